@@ -1,0 +1,339 @@
+//! One-way tool nose radius compensation (paper 003, section 3.3, eqs 17–24): X stays on the
+//! spiral and only Z is lifted until the round nose touches the surface.
+//!
+//! A nose of radius r whose centre sits above the spiral point ρ_s cuts with the arc
+//! `u = r·sin a`, `a ∈ [−β/2, β/2]` (β the included angle) in the radial plane at θ. Paper 003
+//! writes the centre height as `z_s = f(ρ_s + r·sin a) + r·cos a` with a from the local condition
+//! `tan a = f′(ρ_s + r·sin a)` (eqs 19–20). That condition has several roots on a wavy or
+//! concave section, and the wrong one gouges. Here the centre height is the maximum over the
+//! whole arc (DESIGN.md):
+//!
+//! `z_c(ρ_s) = max_{|a| ≤ β/2} F(a)`, `F(a) = f(ρ_s + r·sin a, θ) + r·cos a`,
+//!
+//! so the arc touches the surface at the maximiser and lies on or above it everywhere else:
+//! gouge-free by construction. The maximum is found by sampling F on a grid fine enough not to
+//! step over a surface feature ([`crate::surface::Surface::feature_length_mm`]), then refining
+//! every sampled bracket where `F′(a) = r·cos a·(f′ − tan a)` changes sign from + to − with a
+//! safeguarded Newton iteration on `F′ = 0` (eq 20), which falls back to bisection at slope
+//! kinks. The NC commands the tool tip `z_c − r`. With r = 0 the tip follows the sag.
+//!
+//! The arc is cut at the part's edge: beyond `limit_radius_mm` there is no material.
+
+use crate::field::{FieldError, in_range, non_negative};
+use crate::surface::{Surface, UndefinedError};
+use serde::{Deserialize, Serialize};
+
+/// The tool of a job.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ToolSpec {
+    /// Nose radius r, mm, ≥ 0 (0: a sharp tool, the tip follows the sag).
+    pub nose_radius_mm: f64,
+    /// Included angle β of the nose arc, degrees, in (0, 180]; default 100°. The arc reaches
+    /// β/2 either side of the tool axis (−Z).
+    #[serde(default = "default_included_angle")]
+    pub included_angle_deg: f64,
+}
+
+fn default_included_angle() -> f64 {
+    100.0
+}
+
+/// Where the nose touches the surface for one spiral point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Contact {
+    /// Height of the nose centre z_c, mm.
+    pub z_center: f64,
+    /// Height of the tool tip `z_c − r`, the Z the NC commands, mm.
+    pub z_tip: f64,
+    /// Nose angle a of the contact point, radians (positive: outward of ρ_s).
+    pub angle: f64,
+    /// Signed radial coordinate of the contact point `ρ_s + r·sin a`, mm.
+    pub rho: f64,
+    /// Sag at the contact point, mm.
+    pub z: f64,
+    /// The contact lies at an end of the arc: the section is steeper there than β/2, and the
+    /// tool's flank may cut.
+    pub at_arc_end: bool,
+}
+
+/// One-way compensation for a given tool and part.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NoseCompensator {
+    r: f64,
+    half_angle: f64,
+    samples: usize,
+    limit_radius: f64,
+}
+
+/// Bounds on the grid of nose angles sampled before refinement.
+const MIN_SAMPLES: usize = 16;
+const MAX_SAMPLES: usize = 4096;
+/// Grid steps per feature length along the arc.
+const STEPS_PER_FEATURE: f64 = 8.0;
+
+impl NoseCompensator {
+    /// Checks the tool and prepares the compensator for a surface with features no shorter than
+    /// `feature_length_mm` on a part that ends at `limit_radius_mm`.
+    pub fn new(
+        tool: &ToolSpec,
+        feature_length_mm: f64,
+        limit_radius_mm: f64,
+    ) -> Result<Self, FieldError> {
+        let r = non_negative("nose_radius_mm", tool.nose_radius_mm)?;
+        let beta = in_range("included_angle_deg", tool.included_angle_deg, 0.0, 180.0)?;
+        if beta == 0.0 {
+            return Err(FieldError::new(
+                "included_angle_deg",
+                beta,
+                "must lie in (0, 180]",
+            ));
+        }
+        let half_angle = (beta / 2.0).to_radians();
+        let chord = 2.0 * r * half_angle.sin();
+        let wanted = (chord / feature_length_mm * STEPS_PER_FEATURE).ceil();
+        let samples = if wanted.is_finite() {
+            (wanted as usize).clamp(MIN_SAMPLES, MAX_SAMPLES)
+        } else {
+            MIN_SAMPLES
+        };
+        Ok(Self {
+            r,
+            half_angle,
+            samples,
+            limit_radius: limit_radius_mm,
+        })
+    }
+
+    /// Nose radius, mm.
+    pub fn nose_radius(&self) -> f64 {
+        self.r
+    }
+
+    /// Half the included angle, radians.
+    pub fn half_angle(&self) -> f64 {
+        self.half_angle
+    }
+
+    /// The nose arc's angle range at ρ_s, cut at the part edge.
+    pub fn arc_range(&self, rho_s: f64) -> (f64, f64) {
+        let r = self.r;
+        let clamp_asin = |s: f64| s.clamp(-1.0, 1.0).asin();
+        let hi = self
+            .half_angle
+            .min(clamp_asin((self.limit_radius - rho_s) / r));
+        let lo = (-self.half_angle).max(clamp_asin((-self.limit_radius - rho_s) / r));
+        (lo, hi.max(lo))
+    }
+
+    /// The contact for the spiral point at radius `rho_s` and angle with cosine/sine `(c, s)`.
+    pub fn compensate(
+        &self,
+        surface: &dyn Surface,
+        rho_s: f64,
+        c: f64,
+        s: f64,
+    ) -> Result<Contact, UndefinedError> {
+        let r = self.r;
+        if r == 0.0 {
+            let z = surface.sag(rho_s * c, rho_s * s)?;
+            return Ok(Contact {
+                z_center: z,
+                z_tip: z,
+                angle: 0.0,
+                rho: rho_s,
+                z,
+                at_arc_end: false,
+            });
+        }
+        let section = Section {
+            surface,
+            rho_s,
+            c,
+            s,
+            r,
+        };
+        let (lo, hi) = self.arc_range(rho_s);
+        let n = self.samples;
+        let step = (hi - lo) / n as f64;
+        let mut prev = section.at(lo)?;
+        let mut best = prev;
+        for i in 1..=n {
+            let a = if i == n { hi } else { lo + step * i as f64 };
+            let next = section.at(a)?;
+            if next.f > best.f {
+                best = next;
+            }
+            if prev.g > 0.0 && next.g <= 0.0 {
+                let peak = section.refine(prev, next)?;
+                if peak.f > best.f {
+                    best = peak;
+                }
+            }
+            prev = next;
+        }
+        let at_arc_end =
+            (best.a - self.half_angle).abs() < 1e-12 || (best.a + self.half_angle).abs() < 1e-12;
+        Ok(Contact {
+            z_center: best.f,
+            z_tip: best.f - r,
+            angle: best.a,
+            rho: rho_s + r * best.a.sin(),
+            z: best.z,
+            at_arc_end: at_arc_end && best.g.abs() > 1e-12 * r,
+        })
+    }
+}
+
+/// The radial section through one spiral point and the nose arc above it.
+struct Section<'a> {
+    surface: &'a dyn Surface,
+    rho_s: f64,
+    c: f64,
+    s: f64,
+    r: f64,
+}
+
+/// F(a), F′(a), F″(a) and the sag at the arc point.
+#[derive(Debug, Clone, Copy)]
+struct Sample {
+    a: f64,
+    f: f64,
+    g: f64,
+    gg: f64,
+    z: f64,
+}
+
+impl Section<'_> {
+    fn at(&self, a: f64) -> Result<Sample, UndefinedError> {
+        let (sa, ca) = a.sin_cos();
+        let r = self.r;
+        let rho = self.rho_s + r * sa;
+        let l = self
+            .surface
+            .local(rho * self.c, rho * self.s)?
+            .radial(self.c, self.s);
+        Ok(Sample {
+            a,
+            f: l.z + r * ca,
+            g: r * ca * l.slope - r * sa,
+            gg: r * r * ca * ca * l.curvature_term - r * sa * l.slope - r * ca,
+            z: l.z,
+        })
+    }
+
+    /// The local maximum of F in `[lo.a, hi.a]` given `F′(lo) > 0 ≥ F′(hi)`: Newton on F′ = 0
+    /// inside the bracket, bisection where Newton would leave it or the section has a kink.
+    fn refine(&self, mut lo: Sample, mut hi: Sample) -> Result<Sample, UndefinedError> {
+        if hi.g == 0.0 {
+            return Ok(hi);
+        }
+        let mut best = if lo.f > hi.f { lo } else { hi };
+        let mut x = lo;
+        for _ in 0..100 {
+            let width = hi.a - lo.a;
+            if width < 1e-14 {
+                break;
+            }
+            let newton = if x.gg < 0.0 {
+                x.a - x.g / x.gg
+            } else {
+                f64::NAN
+            };
+            let a = if newton > lo.a && newton < hi.a && (newton - x.a).abs() < 0.5 * width {
+                newton
+            } else {
+                0.5 * (lo.a + hi.a)
+            };
+            x = self.at(a)?;
+            if x.f > best.f {
+                best = x;
+            }
+            if x.g > 0.0 {
+                lo = x;
+            } else if x.g < 0.0 {
+                hi = x;
+            } else {
+                break;
+            }
+            if x.g.abs() < 1e-15 * self.r {
+                break;
+            }
+        }
+        // Near the maximum F is flat to rounding: prefer the converged iterate over one that
+        // only wins by an ulp, so the contact point is as exact as the height.
+        let ulps = 8.0 * f64::EPSILON * best.f.abs().max(self.r);
+        Ok(if x.f >= best.f - ulps { x } else { best })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::surface::{Asphere, AsphereSpec};
+
+    fn tool(r: f64) -> ToolSpec {
+        ToolSpec {
+            nose_radius_mm: r,
+            included_angle_deg: 100.0,
+        }
+    }
+
+    #[test]
+    fn on_a_sphere_the_centre_lies_on_the_offset_sphere() {
+        // Concave sphere R: the nose centre follows the sphere of radius R − r about the same
+        // centre (0, 0, R): z_c = R − √((R − r)² − ρ²).
+        let (big, r) = (20.0, 0.5);
+        let s = Asphere::new(&AsphereSpec {
+            radius_mm: Some(big),
+            ..Default::default()
+        })
+        .unwrap();
+        let comp = NoseCompensator::new(&tool(r), s.feature_length_mm(), 10.0).unwrap();
+        for rho in [0.0, 1.0, 4.0, 7.5, 9.0] {
+            let c = comp.compensate(&s, rho, 0.6, 0.8).unwrap();
+            let expect = big - ((big - r).powi(2) - rho * rho).sqrt();
+            assert!(
+                (c.z_center - expect).abs() < 1e-10,
+                "ρ {rho}: {} vs {expect}",
+                c.z_center
+            );
+            assert!((c.z_tip - (expect - r)).abs() < 1e-10);
+            // The contact lies on the ray from the sphere centre through the nose centre.
+            assert!(
+                (c.rho - rho * big / (big - r)).abs() < 1e-9,
+                "{} vs {}",
+                c.rho,
+                rho * big / (big - r)
+            );
+        }
+    }
+
+    #[test]
+    fn sharp_tool_follows_the_sag() {
+        let s = Asphere::new(&AsphereSpec {
+            radius_mm: Some(30.0),
+            conic: -0.5,
+            ..Default::default()
+        })
+        .unwrap();
+        let comp = NoseCompensator::new(&tool(0.0), s.feature_length_mm(), 10.0).unwrap();
+        let c = comp.compensate(&s, 6.0, 0.0, 1.0).unwrap();
+        assert_eq!(c.z_tip, s.sag(0.0, 6.0).unwrap());
+    }
+
+    #[test]
+    fn tool_fields_are_checked() {
+        let e = NoseCompensator::new(
+            &ToolSpec {
+                nose_radius_mm: 0.5,
+                included_angle_deg: 0.0,
+            },
+            1.0,
+            5.0,
+        );
+        assert_eq!(e.unwrap_err().field, "included_angle_deg");
+        let e = NoseCompensator::new(&tool(-1.0), 1.0, 5.0);
+        assert_eq!(e.unwrap_err().field, "nose_radius_mm");
+    }
+}

@@ -1,0 +1,194 @@
+//! The job: one JSON document that says everything the planner needs (README "Job format").
+//!
+//! Units are in the field names (`_mm`, `_deg`, `_rpm`). Unknown fields are rejected, so a typo
+//! is an error rather than a silently ignored setting. [`Job::from_json`] parses and
+//! [`Job::validate`] checks every value against its range; both give errors that name the field.
+
+use crate::compensate::ToolSpec;
+use crate::field::{FieldError, positive};
+use crate::nc::OutputSpec;
+use crate::spiral::{Direction, Sampling};
+use crate::surface::SurfaceSpec;
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// The example job for the paper 004 lens array, planned by the page on load.
+pub const DEFAULT_JOB: &str = include_str!("../jobs/lens-array-paper004.json");
+
+/// A whole job.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Job {
+    /// Name, used in NC headers and for output file names; letters, digits, `-`, `_`, `.`.
+    pub name: String,
+    /// The blank.
+    pub part: PartSpec,
+    /// The surface to cut.
+    pub surface: SurfaceSpec,
+    /// The tool.
+    pub tool: ToolSpec,
+    /// The machine.
+    pub machine: MachineSpec,
+    /// How the path is laid.
+    pub strategy: StrategySpec,
+    /// What is written.
+    #[serde(default)]
+    pub output: OutputSpec,
+}
+
+/// The blank.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PartSpec {
+    /// Diameter of the part, mm, > 0.
+    pub diameter_mm: f64,
+}
+
+/// The machine.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MachineSpec {
+    /// Spindle speed, rev/min, > 0: sets the time per block (inverse-time feed) and the cycle
+    /// time.
+    pub spindle_rpm: f64,
+}
+
+/// How the spiral is laid.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StrategySpec {
+    /// Radial feed per revolution f, mm, > 0.
+    pub feed_mm_per_rev: f64,
+    /// Point spacing along the spiral.
+    pub sampling: Sampling,
+    /// Sense of θ along the path; default `ccw`.
+    #[serde(default)]
+    pub direction: Direction,
+    /// Polar angle of the first point, degrees; default 0.
+    #[serde(default)]
+    pub start_angle_deg: f64,
+    /// Radius where the spiral starts, mm; default the part radius.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub outer_radius_mm: Option<f64>,
+}
+
+/// A job that cannot be read.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum JobError {
+    /// The text is not a job document: bad JSON, a missing or unknown field, a wrong type.
+    ///
+    /// ```
+    /// let e = spiralcam::job::Job::from_json("{\"name\": 1}").unwrap_err();
+    /// assert!(e.to_string().starts_with("job: "));
+    /// ```
+    #[error("job: {0}")]
+    Syntax(String),
+    /// A field has a value outside its range.
+    ///
+    /// ```
+    /// let mut job = spiralcam::job::Job::default_job();
+    /// job.part.diameter_mm = -1.0;
+    /// assert_eq!(job.validate().unwrap_err().to_string(),
+    ///            "part.diameter_mm = -1: must be a finite number > 0");
+    /// ```
+    #[error(transparent)]
+    Field(#[from] FieldError),
+}
+
+impl Job {
+    /// Parses a job document (checks syntax and field names, not values).
+    pub fn from_json(text: &str) -> Result<Self, JobError> {
+        serde_json::from_str(text).map_err(|e| JobError::Syntax(e.to_string()))
+    }
+
+    /// The page's default job: paper 004's lens array.
+    pub fn default_job() -> Self {
+        match Self::from_json(DEFAULT_JOB) {
+            Ok(job) => job,
+            Err(e) => unreachable!("the bundled default job is valid: {e}"),
+        }
+    }
+
+    /// The job as pretty JSON.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).unwrap_or_default()
+    }
+
+    /// Part radius, mm.
+    pub fn part_radius_mm(&self) -> f64 {
+        self.part.diameter_mm / 2.0
+    }
+
+    /// Radius where the spiral starts, mm (before rounding to whole steps).
+    pub fn outer_radius_mm(&self) -> f64 {
+        self.strategy
+            .outer_radius_mm
+            .unwrap_or_else(|| self.part_radius_mm())
+    }
+
+    /// Checks the values that no single module owns.
+    pub fn validate(&self) -> Result<(), JobError> {
+        if self.name.is_empty()
+            || !self
+                .name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
+        {
+            return Err(FieldError::new(
+                "name",
+                &self.name,
+                "letters, digits, '-', '_' or '.', not empty",
+            )
+            .into());
+        }
+        positive("part.diameter_mm", self.part.diameter_mm)?;
+        positive("machine.spindle_rpm", self.machine.spindle_rpm)?;
+        if let Some(r) = self.strategy.outer_radius_mm {
+            positive("strategy.outer_radius_mm", r)?;
+            if r > self.part_radius_mm() {
+                return Err(FieldError::new(
+                    "strategy.outer_radius_mm",
+                    r,
+                    format!(
+                        "must not exceed the part radius {} mm",
+                        self.part_radius_mm()
+                    ),
+                )
+                .into());
+            }
+        }
+        self.output.validate().map_err(|e| e.within("output"))?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_job_round_trips_and_validates() {
+        let job = Job::default_job();
+        job.validate().unwrap();
+        assert_eq!(Job::from_json(&job.to_json()).unwrap(), job);
+    }
+
+    #[test]
+    fn unknown_fields_are_rejected_with_their_name() {
+        let text = DEFAULT_JOB.replacen("\"spindle_rpm\"", "\"spindle_rmp\"", 1);
+        let e = Job::from_json(&text).unwrap_err().to_string();
+        assert!(e.contains("spindle_rmp"), "{e}");
+    }
+
+    #[test]
+    fn bad_names_are_rejected() {
+        let mut job = Job::default_job();
+        job.name = "a b".into();
+        assert!(
+            job.validate()
+                .unwrap_err()
+                .to_string()
+                .starts_with("name = a b")
+        );
+    }
+}

@@ -1,0 +1,20 @@
+//! spiralcam: spiral tool paths for ultraprecision single-point diamond turning of freeform
+//! optical surfaces with a slow slide servo (SSS) or a fast tool servo (FTS).
+//!
+//! The pipeline (DESIGN.md): a [`job::Job`] names a [`surface::Surface`], the
+//! [`spiral`] sampler lays (ρ, θ) points from the outer radius to the centre, the
+//! [`compensate`] stage lifts each point so that the round tool nose touches the surface without
+//! cutting into it (paper 003 eqs 17–24, solved as a maximum), [`reach`] reports where the nose
+//! cannot reach the surface, and the [`nc`] writers turn the points into NC programs and CSV.
+//! [`plan`] runs the whole chain as a stream, so memory does not grow with the point count.
+
+pub mod compensate;
+pub mod display;
+pub mod field;
+pub mod job;
+pub mod nc;
+pub mod plan;
+pub mod reach;
+pub mod report;
+pub mod spiral;
+pub mod surface;

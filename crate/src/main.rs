@@ -1,0 +1,250 @@
+//! The spiralcam command-line tool.
+//!
+//! ```text
+//! spiralcam plan JOB.json [--nc FILE] [--csv FILE] [--report FILE]
+//! spiralcam sag JOB.json --at POINTS.csv
+//! ```
+//!
+//! `plan` streams the path into the files asked for (each written to `FILE.partial` and renamed
+//! when complete, so a failed run never leaves a truncated program) and prints the report as
+//! JSON on standard output unless `--report` names a file. `sag` prints sag, gradient and second
+//! derivatives of the job's surface at each `x_mm,y_mm` row of a CSV file.
+
+use spiralcam::display::DisplayPath;
+use spiralcam::job::Job;
+use spiralcam::plan::{Planner, Progress, Sinks};
+use std::fs::File;
+use std::io::{BufWriter, IsTerminal, Write};
+use std::ops::ControlFlow;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+const USAGE: &str = "usage:
+  spiralcam plan JOB.json [--nc FILE] [--csv FILE] [--report FILE]
+      plan the job; write the NC program, the point table (CSV) and the report (JSON,
+      standard output when --report is not given)
+  spiralcam sag JOB.json --at POINTS.csv
+      print z, gradient and second derivatives of the job's surface at each x_mm,y_mm row
+  spiralcam --version";
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let result = match args.first().map(String::as_str) {
+        Some("plan") => plan(&args[1..]),
+        Some("sag") => sag(&args[1..]),
+        Some("--version" | "-V") => {
+            println!("spiralcam {}", env!("CARGO_PKG_VERSION"));
+            Ok(())
+        }
+        Some("--help" | "-h") => {
+            println!("{USAGE}");
+            Ok(())
+        }
+        _ => Err(Failure::Usage("expected a command: plan or sag".into())),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(Failure::Usage(m)) => {
+            eprintln!("spiralcam: {m}\n{USAGE}");
+            ExitCode::from(2)
+        }
+        Err(Failure::Run(m)) => {
+            eprintln!("spiralcam: {m}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+enum Failure {
+    Usage(String),
+    Run(String),
+}
+
+fn run_err(e: impl std::fmt::Display) -> Failure {
+    Failure::Run(e.to_string())
+}
+
+/// The job file and the `--flag value` options after it.
+struct Args {
+    job: PathBuf,
+    options: Vec<(String, PathBuf)>,
+}
+
+fn parse(args: &[String], allowed: &[&str]) -> Result<Args, Failure> {
+    let (job, rest) = args
+        .split_first()
+        .ok_or_else(|| Failure::Usage("missing JOB.json".into()))?;
+    let mut options = Vec::new();
+    let mut it = rest.iter();
+    while let Some(flag) = it.next() {
+        if !allowed.contains(&flag.as_str()) {
+            return Err(Failure::Usage(format!("unknown option {flag}")));
+        }
+        let value = it
+            .next()
+            .ok_or_else(|| Failure::Usage(format!("{flag} needs a file name")))?;
+        options.push((flag.clone(), PathBuf::from(value)));
+    }
+    Ok(Args {
+        job: PathBuf::from(job),
+        options,
+    })
+}
+
+impl Args {
+    fn get(&self, flag: &str) -> Option<&Path> {
+        self.options
+            .iter()
+            .rev()
+            .find(|(f, _)| f == flag)
+            .map(|(_, p)| p.as_path())
+    }
+}
+
+fn read_job(path: &Path) -> Result<Job, Failure> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| Failure::Run(format!("{}: {e}", path.display())))?;
+    Job::from_json(&text).map_err(|e| Failure::Run(format!("{}: {e}", path.display())))
+}
+
+/// A file written under a temporary name and renamed into place on success.
+struct Output {
+    path: PathBuf,
+    partial: PathBuf,
+    writer: BufWriter<File>,
+}
+
+impl Output {
+    fn create(path: &Path) -> Result<Self, Failure> {
+        let mut partial = path.as_os_str().to_owned();
+        partial.push(".partial");
+        let partial = PathBuf::from(partial);
+        let file = File::create(&partial)
+            .map_err(|e| Failure::Run(format!("{}: {e}", partial.display())))?;
+        Ok(Self {
+            path: path.to_owned(),
+            partial,
+            writer: BufWriter::with_capacity(1 << 16, file),
+        })
+    }
+
+    fn commit(mut self) -> Result<(), Failure> {
+        self.writer.flush().map_err(run_err)?;
+        std::fs::rename(&self.partial, &self.path)
+            .map_err(|e| Failure::Run(format!("{}: {e}", self.path.display())))
+    }
+
+    fn discard(self) {
+        drop(self.writer);
+        let _ = std::fs::remove_file(&self.partial);
+    }
+}
+
+fn plan(args: &[String]) -> Result<(), Failure> {
+    let args = parse(args, &["--nc", "--csv", "--report"])?;
+    let job = read_job(&args.job)?;
+    let planner = Planner::new(&job).map_err(run_err)?;
+    let mut nc = args.get("--nc").map(Output::create).transpose()?;
+    let mut csv = args.get("--csv").map(Output::create).transpose()?;
+    let tty = std::io::stderr().is_terminal();
+    let mut progress = |p: Progress| {
+        if tty {
+            progress_bar(p);
+        }
+        ControlFlow::Continue(())
+    };
+    let sinks = Sinks {
+        nc: nc.as_mut().map(|o| &mut o.writer as &mut dyn Write),
+        csv: csv.as_mut().map(|o| &mut o.writer as &mut dyn Write),
+        display: None::<&mut DisplayPath>,
+    };
+    let result = planner.run(sinks, &mut progress);
+    if tty {
+        eprintln!();
+    }
+    let report = match result {
+        Ok(r) => r,
+        Err(e) => {
+            nc.map(Output::discard);
+            csv.map(Output::discard);
+            return Err(run_err(e));
+        }
+    };
+    nc.map(Output::commit).transpose()?;
+    csv.map(Output::commit).transpose()?;
+    for w in &report.warnings {
+        eprintln!("warning: {w}");
+    }
+    let json = report.to_json() + "\n";
+    match args.get("--report") {
+        Some(path) => {
+            std::fs::write(path, json).map_err(|e| Failure::Run(format!("{}: {e}", path.display())))
+        }
+        None => std::io::stdout()
+            .write_all(json.as_bytes())
+            .map_err(run_err),
+    }
+}
+
+fn progress_bar(p: Progress) {
+    let frac = if p.total > 0 {
+        (p.done as f64 / p.total as f64).min(1.0)
+    } else {
+        1.0
+    };
+    let filled = (frac * 40.0) as usize;
+    eprint!(
+        "\rplanning [{}{}] {:5.1} % {}/{} points",
+        "#".repeat(filled),
+        ".".repeat(40 - filled),
+        frac * 100.0,
+        p.done,
+        p.total
+    );
+}
+
+fn sag(args: &[String]) -> Result<(), Failure> {
+    let args = parse(args, &["--at"])?;
+    let at = args
+        .get("--at")
+        .ok_or_else(|| Failure::Usage("sag needs --at POINTS.csv".into()))?;
+    let job = read_job(&args.job)?;
+    job.validate().map_err(run_err)?;
+    let surface = job.surface.build(job.part_radius_mm()).map_err(run_err)?;
+    let text =
+        std::fs::read_to_string(at).map_err(|e| Failure::Run(format!("{}: {e}", at.display())))?;
+    let mut out = BufWriter::new(std::io::stdout().lock());
+    let header = "x_mm,y_mm,z_mm,dz_dx,dz_dy,d2z_dx2_per_mm,d2z_dxdy_per_mm,d2z_dy2_per_mm";
+    writeln!(out, "{header}").map_err(run_err)?;
+    for (n, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+        let parsed: Option<Vec<f64>> = fields
+            .iter()
+            .take(2)
+            .map(|f| f.parse::<f64>().ok())
+            .collect();
+        let (x, y) = match parsed.as_deref() {
+            Some(&[x, y]) if x.is_finite() && y.is_finite() => (x, y),
+            _ if n == 0 => continue, // a header row
+            _ => {
+                return Err(Failure::Run(format!(
+                    "{} line {}: expected two numbers x_mm,y_mm, got {line:?}",
+                    at.display(),
+                    n + 1
+                )));
+            }
+        };
+        let l = surface.local(x, y).map_err(run_err)?;
+        writeln!(
+            out,
+            "{x},{y},{:.15e},{:.15e},{:.15e},{:.15e},{:.15e},{:.15e}",
+            l.z, l.zx, l.zy, l.zxx, l.zxy, l.zyy
+        )
+        .map_err(run_err)?;
+    }
+    out.flush().map_err(run_err)
+}

@@ -1,0 +1,528 @@
+//! NC output: point-to-point `C X Z` programs in three dialects, and a CSV of the points.
+//!
+//! Every program has the same shape: a header of comments restating the job; the dialect's
+//! preamble; the approach (rapid to `Z = z₀ + clearance`, rapid to `X₀ C₀`, feed down to z₀);
+//! one linear block per path point after the first; the retract (`Z + clearance`) and the end.
+//! Machine words come from the path through the sign options: `X = x_sign·ρ`,
+//! `Z = z_sign·z_tip` (the tool tip, nose centre − r), `C = c_sign·θ` in degrees, wrapped to
+//! [0, 360) or cumulative. With inverse-time feed (G93) each block's F is
+//! `1 / (block time in minutes) = rpm·360° / |ΔC|`, so the spindle turns at the job's speed.
+//!
+//! The dialects ([`Dialect`]) are styles, not vendor specifications: ISO RS-274 as read by
+//! LinuxCNC's interpreter, and our reading of Moore Nanotech (Delta Tau) and Precitech programs.
+//! Check signs and words against your controller; each is an option. Output is reproducible: no
+//! dates, no host names. Comments are plain ASCII.
+
+mod csv;
+mod iso;
+mod moore;
+pub mod number;
+mod precitech;
+
+pub use csv::CsvWriter;
+
+use crate::field::{FieldError, non_negative, positive};
+use crate::plan::PathPoint;
+use number::{push_fixed, push_scaled, scaled};
+use serde::{Deserialize, Serialize};
+use std::io::Write;
+use thiserror::Error;
+
+/// The NC dialect.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Dialect {
+    /// ISO RS-274 (`G1 X Z C F`), readable by LinuxCNC's `rs274`.
+    #[default]
+    Iso,
+    /// Moore Nanotech style: `G93` once, then bare `C X Z` blocks, C wrapped to [0, 360).
+    Moore,
+    /// Precitech style: its own header, `G1` blocks, X negative by default.
+    Precitech,
+}
+
+/// How the feed is programmed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FeedMode {
+    /// `G93` inverse time, F per block from the spindle speed (default).
+    #[default]
+    InverseTime,
+    /// `G94` with one F in mm/min (`feed_mm_per_min`), for controllers that run the spindle on
+    /// its own.
+    PerMinute,
+}
+
+/// Output options of a job. Signs are +1 or −1; unset ones take the dialect's default.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct OutputSpec {
+    /// `iso` (default), `moore` or `precitech`.
+    pub dialect: Dialect,
+    /// Decimals of X and Z, 0…9; default 6 (1 nm).
+    pub decimals_xz: u32,
+    /// Decimals of C, 0…9; default 5 (0.00001°).
+    pub decimals_c: u32,
+    /// X = x_sign·ρ; default +1 (Precitech −1).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub x_sign: Option<i8>,
+    /// Z = z_sign·z; default +1.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub z_sign: Option<i8>,
+    /// C = c_sign·θ; default +1.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub c_sign: Option<i8>,
+    /// Wrap C to [0, 360); default false for ISO (cumulative, as a rotary axis needs), true
+    /// otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wrap_c: Option<bool>,
+    /// `inverse_time` (default) or `per_minute`.
+    pub feed_mode: FeedMode,
+    /// Feed for `per_minute`, mm/min, > 0.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub feed_mm_per_min: Option<f64>,
+    /// Feed of the plunge onto the first point, mm/min, > 0; default 50.
+    pub plunge_feed_mm_per_min: f64,
+    /// Height of the approach and retract above the first and last point, mm, ≥ 0; default 1.
+    pub clearance_mm: f64,
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        Self {
+            dialect: Dialect::Iso,
+            decimals_xz: 6,
+            decimals_c: 5,
+            x_sign: None,
+            z_sign: None,
+            c_sign: None,
+            wrap_c: None,
+            feed_mode: FeedMode::InverseTime,
+            feed_mm_per_min: None,
+            plunge_feed_mm_per_min: 50.0,
+            clearance_mm: 1.0,
+        }
+    }
+}
+
+impl OutputSpec {
+    /// Checks the options.
+    pub fn validate(&self) -> Result<(), FieldError> {
+        for (field, d) in [
+            ("decimals_xz", self.decimals_xz),
+            ("decimals_c", self.decimals_c),
+        ] {
+            if d > number::MAX_DECIMALS {
+                return Err(FieldError::new(
+                    field,
+                    d,
+                    format!("must lie in [0, {}]", number::MAX_DECIMALS),
+                ));
+            }
+        }
+        for (field, s) in [
+            ("x_sign", self.x_sign),
+            ("z_sign", self.z_sign),
+            ("c_sign", self.c_sign),
+        ] {
+            if let Some(s) = s.filter(|s| s.abs() != 1) {
+                return Err(FieldError::new(field, s, "must be 1 or -1"));
+            }
+        }
+        match (self.feed_mode, self.feed_mm_per_min) {
+            (FeedMode::PerMinute, None) => {
+                return Err(FieldError::new(
+                    "feed_mm_per_min",
+                    "missing",
+                    "required with feed_mode per_minute",
+                ));
+            }
+            (_, Some(f)) => {
+                positive("feed_mm_per_min", f)?;
+            }
+            _ => {}
+        }
+        positive("plunge_feed_mm_per_min", self.plunge_feed_mm_per_min)?;
+        non_negative("clearance_mm", self.clearance_mm)?;
+        Ok(())
+    }
+
+    /// The dialect's style.
+    pub fn style(&self) -> &'static Style {
+        match self.dialect {
+            Dialect::Iso => &iso::STYLE,
+            Dialect::Moore => &moore::STYLE,
+            Dialect::Precitech => &precitech::STYLE,
+        }
+    }
+
+    /// The conventions in effect: signs and wrapping after the dialect's defaults.
+    pub fn conventions(&self) -> Conventions {
+        let st = self.style();
+        Conventions {
+            x_sign: self.x_sign.map_or(st.x_sign, f64::from),
+            z_sign: self.z_sign.map_or(1.0, f64::from),
+            c_sign: self.c_sign.map_or(1.0, f64::from),
+            wrap_c: self.wrap_c.unwrap_or(st.wrap_c),
+            decimals_xz: self.decimals_xz,
+            decimals_c: self.decimals_c,
+        }
+    }
+}
+
+/// What distinguishes the dialects.
+#[derive(Debug)]
+pub struct Style {
+    /// Name for headers.
+    pub name: &'static str,
+    /// File extension of programs.
+    pub extension: &'static str,
+    /// Lines after the header comments.
+    pub preamble: &'static [&'static str],
+    /// Prefix of each linear block (`"G1 "` or empty).
+    pub block_prefix: &'static str,
+    /// Word order within a block.
+    pub words: [Axis; 3],
+    /// F on every inverse-time block (LinuxCNC requires it) or only when it changes.
+    pub feed_every_block: bool,
+    /// Default sign of X.
+    pub x_sign: f64,
+    /// Default for wrapping C.
+    pub wrap_c: bool,
+    /// Lines that end the program.
+    pub end: &'static [&'static str],
+}
+
+/// An axis word.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Axis {
+    /// Spindle angle, degrees.
+    C,
+    /// Radial slide, mm.
+    X,
+    /// Axial slide, mm.
+    Z,
+}
+
+/// Signs, wrapping and decimals in effect for a program and its CSV.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Conventions {
+    /// X = x_sign·ρ.
+    pub x_sign: f64,
+    /// Z = z_sign·z.
+    pub z_sign: f64,
+    /// C = c_sign·θ.
+    pub c_sign: f64,
+    /// Wrap C to [0, 360).
+    pub wrap_c: bool,
+    /// Decimals of X and Z.
+    pub decimals_xz: u32,
+    /// Decimals of C.
+    pub decimals_c: u32,
+}
+
+/// Machine words of one point, in units of their last digit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Words {
+    /// C, units of 10^−decimals_c degrees.
+    pub c: i64,
+    /// X, units of 10^−decimals_xz mm.
+    pub x: i64,
+    /// Z, units of 10^−decimals_xz mm.
+    pub z: i64,
+}
+
+impl Conventions {
+    /// The words of a point at (ρ, θ, z), or an error naming the value that cannot be written.
+    pub fn words(&self, index: u64, rho: f64, theta: f64, z: f64) -> Result<Words, NcError> {
+        let bad = |what: &'static str, value: f64| NcError::Unwritable { index, what, value };
+        let x = scaled(self.x_sign * rho, self.decimals_xz).ok_or(bad("X", rho))?;
+        let z = scaled(self.z_sign * z, self.decimals_xz).ok_or(bad("Z", z))?;
+        let mut c =
+            scaled(self.c_sign * theta.to_degrees(), self.decimals_c).ok_or(bad("C", theta))?;
+        if self.wrap_c {
+            c = c.rem_euclid(360 * 10i64.pow(self.decimals_c));
+        }
+        Ok(Words { c, x, z })
+    }
+}
+
+/// An NC program or CSV that cannot be written.
+#[derive(Debug, Error)]
+pub enum NcError {
+    /// A coordinate is NaN, infinite or too large for the decimals asked.
+    ///
+    /// ```
+    /// use spiralcam::nc::{NcError, OutputSpec};
+    /// let e = OutputSpec::default().conventions().words(7, f64::NAN, 0.0, 0.0).unwrap_err();
+    /// assert!(matches!(e, NcError::Unwritable { index: 7, what: "X", .. }));
+    /// ```
+    #[error("point {index}: {what} = {value} cannot be written")]
+    Unwritable {
+        /// Point index along the path.
+        index: u64,
+        /// The word.
+        what: &'static str,
+        /// The value.
+        value: f64,
+    },
+    /// The output failed.
+    ///
+    /// ```
+    /// let e = spiralcam::nc::NcError::from(std::io::Error::other("disk full"));
+    /// assert_eq!(e.to_string(), "writing: disk full");
+    /// ```
+    #[error("writing: {0}")]
+    Io(#[from] std::io::Error),
+}
+
+/// What the header restates, besides the job itself.
+#[derive(Debug, Clone)]
+pub struct Header {
+    /// Comment lines, plain text (made ASCII and parenthesis-free on writing).
+    pub lines: Vec<String>,
+    /// Spindle speed, rev/min.
+    pub spindle_rpm: f64,
+}
+
+/// Streams one NC program.
+pub struct NcWriter<W: Write> {
+    out: W,
+    style: &'static Style,
+    conv: Conventions,
+    feed_mode: FeedMode,
+    feed_mm_per_min: f64,
+    plunge_feed: f64,
+    clearance: f64,
+    spindle_rpm: f64,
+    line: Vec<u8>,
+    last: Option<(Words, f64, f64)>,
+    last_f: Option<i64>,
+    bytes: u64,
+}
+
+/// Decimals of F.
+const DECIMALS_F: u32 = 3;
+
+impl<W: Write> NcWriter<W> {
+    /// Starts a program: writes the header comments and the preamble.
+    pub fn new(mut out: W, spec: &OutputSpec, header: &Header) -> Result<Self, NcError> {
+        let style = spec.style();
+        let mut bytes = 0u64;
+        let mut text = String::new();
+        for l in &header.lines {
+            text.push_str(&format!("({})\n", ascii_comment(l)));
+        }
+        for l in style.preamble {
+            text.push_str(l);
+            text.push('\n');
+        }
+        out.write_all(text.as_bytes())?;
+        bytes += text.len() as u64;
+        Ok(Self {
+            out,
+            style,
+            conv: spec.conventions(),
+            feed_mode: spec.feed_mode,
+            feed_mm_per_min: spec.feed_mm_per_min.unwrap_or(0.0),
+            plunge_feed: spec.plunge_feed_mm_per_min,
+            clearance: spec.clearance_mm,
+            spindle_rpm: header.spindle_rpm,
+            line: Vec::with_capacity(96),
+            last: None,
+            last_f: None,
+            bytes,
+        })
+    }
+
+    /// Writes the block that reaches `p` (the approach for the first point).
+    pub fn point(&mut self, p: &PathPoint) -> Result<(), NcError> {
+        let w = self.conv.words(p.index, p.rho, p.theta, p.z)?;
+        self.line.clear();
+        match self.last {
+            None => self.approach(w, p)?,
+            Some((_, prev_theta, _)) => {
+                self.line
+                    .extend_from_slice(self.style.block_prefix.as_bytes());
+                self.push_words(w);
+                if self.feed_mode == FeedMode::InverseTime {
+                    let dtheta = (p.theta - prev_theta).abs();
+                    let f = self.spindle_rpm * std::f64::consts::TAU / dtheta;
+                    let units = scaled(f, DECIMALS_F).ok_or(NcError::Unwritable {
+                        index: p.index,
+                        what: "F",
+                        value: f,
+                    })?;
+                    if self.style.feed_every_block || self.last_f != Some(units) {
+                        self.line.extend_from_slice(b" F");
+                        push_scaled(&mut self.line, units, DECIMALS_F);
+                        self.last_f = Some(units);
+                    }
+                }
+                self.line.push(b'\n');
+            }
+        }
+        self.out.write_all(&self.line)?;
+        self.bytes += self.line.len() as u64;
+        self.last = Some((w, p.theta, p.z));
+        Ok(())
+    }
+
+    fn approach(&mut self, w: Words, p: &PathPoint) -> Result<(), NcError> {
+        let safe = self
+            .conv
+            .words(p.index, p.rho, p.theta, p.z + self.clearance)?
+            .z;
+        let d = self.conv.decimals_xz;
+        let l = &mut self.line;
+        l.extend_from_slice(b"G0 Z");
+        push_scaled(l, safe, d);
+        l.extend_from_slice(b"\nG0 ");
+        self.push_xc(w);
+        self.line.extend_from_slice(b"\nG1 Z");
+        push_scaled(&mut self.line, w.z, d);
+        self.line.extend_from_slice(b" F");
+        push_fixed(&mut self.line, self.plunge_feed, DECIMALS_F);
+        self.line.push(b'\n');
+        match self.feed_mode {
+            FeedMode::InverseTime => self.line.extend_from_slice(b"G93\n"),
+            FeedMode::PerMinute => {
+                self.line.extend_from_slice(b"F");
+                push_fixed(&mut self.line, self.feed_mm_per_min, DECIMALS_F);
+                self.line.push(b'\n');
+            }
+        }
+        Ok(())
+    }
+
+    fn push_xc(&mut self, w: Words) {
+        let mut first = true;
+        for axis in self.style.words {
+            if axis == Axis::Z {
+                continue;
+            }
+            if !first {
+                self.line.push(b' ');
+            }
+            first = false;
+            self.push_word(axis, w);
+        }
+    }
+
+    fn push_words(&mut self, w: Words) {
+        for (i, axis) in self.style.words.into_iter().enumerate() {
+            if i > 0 {
+                self.line.push(b' ');
+            }
+            self.push_word(axis, w);
+        }
+    }
+
+    fn push_word(&mut self, axis: Axis, w: Words) {
+        let (letter, units, d) = match axis {
+            Axis::C => (b'C', w.c, self.conv.decimals_c),
+            Axis::X => (b'X', w.x, self.conv.decimals_xz),
+            Axis::Z => (b'Z', w.z, self.conv.decimals_xz),
+        };
+        self.line.push(letter);
+        push_scaled(&mut self.line, units, d);
+    }
+
+    /// Writes the retract and the end; returns the program's size in bytes.
+    pub fn finish(mut self) -> Result<u64, NcError> {
+        self.line.clear();
+        if self.feed_mode == FeedMode::InverseTime {
+            self.line.extend_from_slice(b"G94\n");
+        }
+        if let Some((_, theta, z)) = self.last {
+            let safe = self.conv.words(0, 0.0, theta, z + self.clearance)?.z;
+            self.line.extend_from_slice(b"G0 Z");
+            push_scaled(&mut self.line, safe, self.conv.decimals_xz);
+            self.line.push(b'\n');
+        }
+        for l in self.style.end {
+            self.line.extend_from_slice(l.as_bytes());
+            self.line.push(b'\n');
+        }
+        self.out.write_all(&self.line)?;
+        self.out.flush()?;
+        Ok(self.bytes + self.line.len() as u64)
+    }
+}
+
+/// A comment's text as plain ASCII without parentheses (RS-274 comments cannot nest).
+pub fn ascii_comment(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for ch in s.chars() {
+        match ch {
+            '(' => out.push('['),
+            ')' => out.push(']'),
+            'µ' | 'μ' => out.push('u'),
+            '°' => out.push_str(" deg"),
+            'θ' => out.push_str("theta"),
+            'ρ' => out.push_str("rho"),
+            'λ' => out.push_str("lambda"),
+            'φ' => out.push_str("phi"),
+            'β' => out.push_str("beta"),
+            'Ø' => out.push_str("dia "),
+            '−' | '–' | '—' => out.push('-'),
+            '·' | '×' => out.push('*'),
+            '≤' => out.push_str("<="),
+            '≥' => out.push_str(">="),
+            c if c.is_ascii() && !c.is_ascii_control() => out.push(c),
+            _ => out.push('?'),
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn comments_become_plain_ascii() {
+        assert_eq!(
+            ascii_comment("R 2.84 mm (−44.4 µm), 60°"),
+            "R 2.84 mm [-44.4 um], 60 deg"
+        );
+    }
+
+    #[test]
+    fn c_wraps_after_rounding() {
+        let conv = Conventions {
+            x_sign: 1.0,
+            z_sign: 1.0,
+            c_sign: 1.0,
+            wrap_c: true,
+            decimals_xz: 6,
+            decimals_c: 5,
+        };
+        // 359.999996° rounds to 360.00000 and must wrap to 0.
+        let w = conv
+            .words(0, 1.0, 359.999_996f64.to_radians(), 0.0)
+            .unwrap();
+        assert_eq!(w.c, 0);
+        let w = conv.words(0, 1.0, (-90.0f64).to_radians(), 0.0).unwrap();
+        assert_eq!(w.c, 27_000_000);
+    }
+
+    #[test]
+    fn options_are_checked() {
+        let o = OutputSpec {
+            x_sign: Some(2),
+            ..Default::default()
+        };
+        assert_eq!(o.validate().unwrap_err().field, "x_sign");
+        let o = OutputSpec {
+            feed_mode: FeedMode::PerMinute,
+            ..Default::default()
+        };
+        assert_eq!(o.validate().unwrap_err().field, "feed_mm_per_min");
+        let o = OutputSpec {
+            decimals_c: 12,
+            ..Default::default()
+        };
+        assert_eq!(o.validate().unwrap_err().field, "decimals_c");
+    }
+}

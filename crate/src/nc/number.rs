@@ -1,0 +1,155 @@
+//! Fixed-point decimal formatting for NC words, without allocation: the value is rounded once to
+//! an integer count of the last digit (`round(v·10^d)`, ties away from zero), then written digit
+//! by digit. Negative zero prints as zero, so `-0.000000` never appears; non-finite values and
+//! values beyond ±9·10¹⁸ units of the last digit are refused, so NaN never reaches a file.
+
+/// Largest number of decimals accepted.
+pub const MAX_DECIMALS: u32 = 9;
+
+/// 10^d for d = 0…9.
+const POW10: [i64; 10] = [
+    1,
+    10,
+    100,
+    1_000,
+    10_000,
+    100_000,
+    1_000_000,
+    10_000_000,
+    100_000_000,
+    1_000_000_000,
+];
+
+/// `v` in units of the last of `decimals` digits, or `None` if it cannot be written.
+///
+/// The product `v·10^d` is rounded once in floating point; where that lands within 10⁻⁶ of a
+/// half-way point the exact remainder `v·10^d − s` (one fused multiply-add) decides, so the
+/// result is the correctly rounded decimal of the binary value `v`.
+pub fn scaled(v: f64, decimals: u32) -> Option<i64> {
+    let p = POW10[decimals as usize] as f64;
+    let product = v * p;
+    let mut s = product.round();
+    if ((product - product.trunc()).abs() - 0.5).abs() < 1e-6 {
+        let rest = v.mul_add(p, -s);
+        if rest > 0.5 || (rest == 0.5 && v > 0.0) {
+            s += 1.0;
+        } else if rest < -0.5 || (rest == -0.5 && v < 0.0) {
+            s -= 1.0;
+        }
+    }
+    (s.is_finite() && s.abs() < 9.0e18).then_some(s as i64)
+}
+
+/// Appends `units · 10^−decimals` with exactly `decimals` digits after the point.
+pub fn push_scaled(buf: &mut Vec<u8>, units: i64, decimals: u32) {
+    if units < 0 {
+        buf.push(b'-');
+    }
+    let mag = units.unsigned_abs();
+    let p = POW10[decimals as usize] as u64;
+    push_digits(buf, mag / p);
+    if decimals > 0 {
+        buf.push(b'.');
+        let frac = mag % p;
+        let start = buf.len();
+        push_digits(buf, frac);
+        let written = buf.len() - start;
+        let pad = decimals as usize - written;
+        if pad > 0 {
+            buf.splice(start..start, std::iter::repeat_n(b'0', pad));
+        }
+    }
+}
+
+/// Appends `v` rounded to `decimals` digits; `false` (and nothing appended) if it cannot be.
+pub fn push_fixed(buf: &mut Vec<u8>, v: f64, decimals: u32) -> bool {
+    match scaled(v, decimals) {
+        Some(u) => {
+            push_scaled(buf, u, decimals);
+            true
+        }
+        None => false,
+    }
+}
+
+fn push_digits(buf: &mut Vec<u8>, mut n: u64) {
+    let mut tmp = [0u8; 20];
+    let mut i = tmp.len();
+    loop {
+        i -= 1;
+        tmp[i] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    buf.extend_from_slice(&tmp[i..]);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fixed(v: f64, d: u32) -> String {
+        let mut b = Vec::new();
+        assert!(push_fixed(&mut b, v, d));
+        String::from_utf8(b).unwrap()
+    }
+
+    #[test]
+    fn matches_std_formatting() {
+        for &v in &[
+            0.0,
+            1.5,
+            -2.25,
+            123.456789,
+            -0.0004,
+            5.0,
+            1e-9,
+            -7.1234565,
+            359.999_996,
+            1e6 + 0.25,
+            0.1 + 0.2,
+            2.675,
+        ] {
+            for d in [0, 3, 5, 6, 9] {
+                let std = format!("{:.*}", d as usize, v);
+                let std = if std
+                    .trim_start_matches('-')
+                    .chars()
+                    .all(|c| c == '0' || c == '.')
+                {
+                    std.trim_start_matches('-').to_string()
+                } else {
+                    std
+                };
+                // Both round the exact binary value; they differ only on exact binary ties
+                // (std: to even, ours: away from zero), which these values avoid.
+                assert_eq!(fixed(v, d), std, "{v} with {d} decimals");
+            }
+        }
+    }
+
+    #[test]
+    fn exact_ties_round_away_from_zero() {
+        assert_eq!(fixed(2.5, 0), "3");
+        assert_eq!(fixed(-2.5, 0), "-3");
+        assert_eq!(fixed(0.125, 2), "0.13");
+    }
+
+    #[test]
+    fn negative_zero_and_small_negatives_print_as_zero() {
+        assert_eq!(fixed(-0.0, 6), "0.000000");
+        assert_eq!(fixed(-4e-7, 6), "0.000000");
+        assert_eq!(fixed(-6e-7, 6), "-0.000001");
+    }
+
+    #[test]
+    fn non_finite_and_huge_values_are_refused() {
+        let mut b = Vec::new();
+        assert!(!push_fixed(&mut b, f64::NAN, 6));
+        assert!(!push_fixed(&mut b, f64::INFINITY, 6));
+        assert!(!push_fixed(&mut b, 1e13, 6));
+        assert!(b.is_empty());
+    }
+}

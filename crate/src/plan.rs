@@ -1,0 +1,304 @@
+//! The planner: job → surface → spiral → one-way compensation → NC, CSV and report, as one
+//! stream. Points are produced one at a time by [`Planner::points`] and handed to every sink in
+//! turn by [`Planner::run`], so memory stays flat whatever the point count; only the display
+//! copy ([`crate::display::DisplayPath`]) keeps points, decimated to a fixed budget.
+
+use crate::compensate::NoseCompensator;
+use crate::display::DisplayPath;
+use crate::field::FieldError;
+use crate::job::{Job, JobError};
+use crate::nc::{CsvWriter, Header, NcError, NcWriter};
+use crate::reach::{self, ConcaveZone};
+use crate::report::{Report, Stats};
+use crate::spiral::{Sampling, Spiral};
+use crate::surface::{Surface, UndefinedError};
+use std::io::Write;
+use std::ops::ControlFlow;
+use thiserror::Error;
+
+/// One point of the tool path.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PathPoint {
+    /// Position along the path, from 0.
+    pub index: u64,
+    /// Radius of the tool (X on the spiral), mm.
+    pub rho: f64,
+    /// Polar angle on the part, radians, cumulative.
+    pub theta: f64,
+    /// Commanded Z: the tool tip (nose centre − r), mm.
+    pub z: f64,
+    /// Where the nose touches the surface (x, y, z), mm.
+    pub contact: [f64; 3],
+    /// Nose angle of the contact, radians.
+    pub contact_angle: f64,
+    /// The contact is at an end of the nose arc (see [`crate::compensate::Contact`]).
+    pub at_arc_end: bool,
+}
+
+/// Why a plan failed.
+#[derive(Debug, Error)]
+pub enum PlanError {
+    /// The job is malformed or has a value out of range.
+    ///
+    /// ```
+    /// let mut job = spiralcam::job::Job::default_job();
+    /// job.tool.nose_radius_mm = -1.0;
+    /// let e = spiralcam::plan::Planner::new(&job).unwrap_err();
+    /// assert!(e.to_string().starts_with("tool.nose_radius_mm = -1"));
+    /// ```
+    #[error(transparent)]
+    Job(#[from] JobError),
+    /// The surface has no value where the path needs one.
+    ///
+    /// ```
+    /// let mut job = spiralcam::job::Job::default_job();
+    /// job.surface = serde_json::from_str(r#"{"type":"asphere","radius_mm":4}"#).unwrap();
+    /// let e = spiralcam::plan::Planner::new(&job).unwrap().run(
+    ///     spiralcam::plan::Sinks::default(), &mut |_| std::ops::ControlFlow::Continue(())).unwrap_err();
+    /// assert!(e.to_string().contains("even asphere is undefined at radius"));
+    /// ```
+    #[error(transparent)]
+    Surface(#[from] UndefinedError),
+    /// An output could not be written.
+    ///
+    /// ```
+    /// let e = spiralcam::plan::PlanError::from(spiralcam::nc::NcError::from(std::io::Error::other("full")));
+    /// assert_eq!(e.to_string(), "writing: full");
+    /// ```
+    #[error(transparent)]
+    Output(#[from] NcError),
+    /// The progress callback asked to stop.
+    ///
+    /// ```
+    /// assert_eq!(spiralcam::plan::PlanError::Cancelled.to_string(), "cancelled");
+    /// ```
+    #[error("cancelled")]
+    Cancelled,
+}
+
+impl From<FieldError> for PlanError {
+    fn from(e: FieldError) -> Self {
+        PlanError::Job(JobError::Field(e))
+    }
+}
+
+/// Progress of a run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Progress {
+    /// Points done.
+    pub done: u64,
+    /// Points expected (exact for constant angle sampling).
+    pub total: u64,
+}
+
+/// Where a run's output goes; each is optional.
+#[derive(Default)]
+pub struct Sinks<'a> {
+    /// The NC program.
+    pub nc: Option<&'a mut dyn Write>,
+    /// The CSV table.
+    pub csv: Option<&'a mut dyn Write>,
+    /// The decimated copy for display.
+    pub display: Option<&'a mut DisplayPath>,
+}
+
+/// How often the progress callback is called, in points.
+pub const PROGRESS_EVERY: u64 = 65_536;
+
+/// A checked job, ready to plan.
+#[derive(Debug)]
+pub struct Planner {
+    job: Job,
+    surface: Box<dyn Surface>,
+    spiral: Spiral,
+    nose: NoseCompensator,
+}
+
+impl Planner {
+    /// Validates the job and builds its stages.
+    pub fn new(job: &Job) -> Result<Self, PlanError> {
+        job.validate()?;
+        let surface = job.surface.build(job.part_radius_mm())?;
+        let st = &job.strategy;
+        let spiral = Spiral::new(
+            job.outer_radius_mm(),
+            st.feed_mm_per_rev,
+            &st.sampling,
+            st.direction,
+            st.start_angle_deg,
+        )
+        .map_err(|e| e.within("strategy"))?;
+        let nose = NoseCompensator::new(
+            &job.tool,
+            surface.feature_length_mm(),
+            spiral.start_radius_mm(),
+        )
+        .map_err(|e| e.within("tool"))?;
+        Ok(Self {
+            job: job.clone(),
+            surface,
+            spiral,
+            nose,
+        })
+    }
+
+    /// The job.
+    pub fn job(&self) -> &Job {
+        &self.job
+    }
+
+    /// The surface.
+    pub fn surface(&self) -> &dyn Surface {
+        self.surface.as_ref()
+    }
+
+    /// The spiral.
+    pub fn spiral(&self) -> &Spiral {
+        &self.spiral
+    }
+
+    /// The compensator.
+    pub fn nose(&self) -> &NoseCompensator {
+        &self.nose
+    }
+
+    /// The compensated path, streamed.
+    pub fn points(&self) -> impl Iterator<Item = Result<PathPoint, UndefinedError>> + '_ {
+        self.spiral.points().enumerate().map(move |(i, sp)| {
+            let (s, c) = sp.theta.sin_cos();
+            let contact = self.nose.compensate(self.surface.as_ref(), sp.rho, c, s)?;
+            Ok(PathPoint {
+                index: i as u64,
+                rho: sp.rho,
+                theta: sp.theta,
+                z: contact.z_tip,
+                contact: [contact.rho * c, contact.rho * s, contact.z],
+                contact_angle: contact.angle,
+                at_arc_end: contact.at_arc_end,
+            })
+        })
+    }
+
+    /// The header comments of the NC program.
+    pub fn header(&self) -> Header {
+        let j = &self.job;
+        let conv = j.output.conventions();
+        let sampling = match j.strategy.sampling {
+            Sampling::ConstantAngle { points_per_rev } => {
+                format!("constant angle, {points_per_rev} points/rev")
+            }
+            Sampling::ConstantArc {
+                arc_length_mm,
+                max_angle_step_deg,
+            } => {
+                format!(
+                    "constant arc {arc_length_mm} mm, angle step at most {max_angle_step_deg} deg"
+                )
+            }
+        };
+        let sign = |s: f64| if s > 0.0 { "+" } else { "-" };
+        Header {
+            lines: vec![
+                format!(
+                    "spiralcam {} - {}",
+                    env!("CARGO_PKG_VERSION"),
+                    j.output.style().name
+                ),
+                format!("job {}", j.name),
+                format!("surface: {}", self.surface.describe()),
+                format!(
+                    "part diameter {} mm; spiral from radius {:.6} mm to the centre",
+                    j.part.diameter_mm,
+                    self.spiral.start_radius_mm()
+                ),
+                format!(
+                    "tool nose radius {} mm, included angle {} deg; one-way compensation; Z is the tool tip = nose centre - r",
+                    j.tool.nose_radius_mm, j.tool.included_angle_deg
+                ),
+                format!(
+                    "feed {} mm/rev, {}, {:?}, start angle {} deg, {:.3} revolutions",
+                    j.strategy.feed_mm_per_rev,
+                    sampling,
+                    j.strategy.direction,
+                    j.strategy.start_angle_deg,
+                    self.spiral.revolutions()
+                )
+                .to_lowercase(),
+                format!("spindle {} rpm", j.machine.spindle_rpm),
+                format!(
+                    "X = {}rho mm, Z = {}z mm, C = {}theta deg{}",
+                    sign(conv.x_sign),
+                    sign(conv.z_sign),
+                    sign(conv.c_sign),
+                    if conv.wrap_c {
+                        " wrapped to [0, 360)"
+                    } else {
+                        " cumulative"
+                    }
+                ),
+            ],
+            spindle_rpm: j.machine.spindle_rpm,
+        }
+    }
+
+    /// Zones where the nose cannot reach the surface (see [`crate::reach`]).
+    pub fn concave_zones(&self) -> Result<Vec<ConcaveZone>, UndefinedError> {
+        reach::concave_zones(
+            self.surface.as_ref(),
+            &self.nose,
+            self.spiral.start_radius_mm(),
+        )
+    }
+
+    /// Plans the whole path into the sinks and returns the report. The NC program is always
+    /// generated (into a byte counter when no sink is given) so the report can state its size.
+    /// `progress` is called every [`PROGRESS_EVERY`] points and at the end; returning
+    /// `ControlFlow::Break` cancels.
+    pub fn run(
+        &self,
+        sinks: Sinks,
+        progress: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+    ) -> Result<Report, PlanError> {
+        let mut counter = std::io::sink();
+        let nc_out: &mut dyn Write = match sinks.nc {
+            Some(w) => w,
+            None => &mut counter,
+        };
+        let mut nc = NcWriter::new(nc_out, &self.job.output, &self.header())?;
+        let conv = self.job.output.conventions();
+        let mut csv = sinks.csv.map(|w| CsvWriter::new(w, conv)).transpose()?;
+        let mut display = sinks.display;
+        let total = self.spiral.point_count_hint();
+        let mut stats = Stats::default();
+        for p in self.points() {
+            let p = p?;
+            nc.point(&p)?;
+            if let Some(csv) = csv.as_mut() {
+                csv.point(&p)?;
+            }
+            if let Some(d) = display.as_deref_mut() {
+                d.push(&p);
+            }
+            stats.add(&p);
+            if stats.points % PROGRESS_EVERY == 0
+                && progress(Progress {
+                    done: stats.points,
+                    total,
+                })
+                .is_break()
+            {
+                return Err(PlanError::Cancelled);
+            }
+        }
+        let nc_bytes = nc.finish()?;
+        if let Some(csv) = csv {
+            csv.finish()?;
+        }
+        let _ = progress(Progress {
+            done: stats.points,
+            total: stats.points,
+        });
+        let zones = self.concave_zones()?;
+        Ok(Report::new(self, &stats, nc_bytes, zones))
+    }
+}

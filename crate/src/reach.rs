@@ -1,0 +1,462 @@
+//! Where the nose cannot reach: zones whose radial section is concave with a curvature radius
+//! smaller than the nose radius r, and the form error they leave (DESIGN.md, "Tool nose
+//! compensation"; paper 003, Figure 8).
+//!
+//! Detection: the radial sections at 360 angles are sampled at spacing δ (a sixteenth of the
+//! surface's feature length or an eighth of r, at most 4000 samples per section). A sample is
+//! flagged where the curvature `κ = f″/(1+f′²)^{3/2}` exceeds 1/r, and both ends of an interval
+//! are flagged where the slope rises faster than `(1+f′²)^{3/2}/r` per mm across it — a slope
+//! kink, such as the foot of a convex lenslet, or a sharp bend between samples. Flagged samples
+//! that touch (in ρ, or in θ at the same ρ) form one zone.
+//!
+//! Depth: the cut surface is the lower envelope of the nose arcs, `cut(u) = min_ρs [z_c(ρ_s) −
+//! √(r² − (u − ρ_s)²)]`, with z_c the compensated centre height ([`crate::compensate`]); the form
+//! error is the closing residual `cut(u) − f(u)`. It is found on a grid around the zone and
+//! refined by nested golden-section searches (over u for the largest residual, over ρ_s for the
+//! envelope), because at a kink both functions have corners that a grid would only resolve to
+//! first order. The depth reported is the largest found at up to four angles of each zone: the
+//! sharpest, and the zone's first, middle and last.
+
+use crate::compensate::NoseCompensator;
+use crate::report::Location;
+use crate::surface::{Surface, UndefinedError};
+use serde::Serialize;
+use std::f64::consts::TAU;
+
+/// Angles at which radial sections are examined.
+pub const ANGLES: usize = 360;
+/// Most samples per radial section.
+const MAX_SAMPLES: usize = 4000;
+/// Most zones reported.
+pub const MAX_ZONES: usize = 500;
+
+/// A zone the nose cannot reach.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ConcaveZone {
+    /// Inner radius, mm.
+    pub rho_min_mm: f64,
+    /// Outer radius, mm.
+    pub rho_max_mm: f64,
+    /// First angle, degrees: the zone runs counter-clockwise from here…
+    pub theta_from_deg: f64,
+    /// …to here, degrees (smaller than `theta_from_deg` when it crosses 0°).
+    pub theta_to_deg: f64,
+    /// Smallest curvature radius found, mm (a slope kink shows as less than the sample spacing).
+    pub min_curvature_radius_mm: f64,
+    /// The zone contains a slope kink (or a bend sharper than the sampling).
+    pub slope_kink: bool,
+    /// Largest form error found: material the nose leaves above the surface, µm.
+    pub depth_um: f64,
+    /// Where that error is deepest.
+    pub at: Location,
+}
+
+/// A flagged sample: curvature radius there, and whether a kink flagged it.
+#[derive(Debug, Clone, Copy)]
+struct Flag {
+    radius: f64,
+    kink: bool,
+}
+
+/// The zones of a surface for a nose, on a part of radius `part_radius_mm`, deepest first.
+pub fn concave_zones(
+    surface: &dyn Surface,
+    nose: &NoseCompensator,
+    part_radius_mm: f64,
+) -> Result<Vec<ConcaveZone>, UndefinedError> {
+    let r = nose.nose_radius();
+    if r == 0.0 {
+        return Ok(Vec::new());
+    }
+    let wanted = (surface.feature_length_mm() / 16.0).min(r / 8.0);
+    let n = ((part_radius_mm / wanted).ceil() as usize).clamp(16, MAX_SAMPLES);
+    let delta = part_radius_mm / n as f64;
+    let grid = flag_grid(surface, r, n, delta)?;
+    let mut zones = Vec::new();
+    for cells in components(&grid, n + 1) {
+        zones.push(measure(
+            surface,
+            nose,
+            &grid,
+            &cells,
+            delta,
+            part_radius_mm,
+        )?);
+    }
+    zones.sort_by(|a, b| b.depth_um.total_cmp(&a.depth_um));
+    zones.truncate(MAX_ZONES);
+    Ok(zones)
+}
+
+/// Flags per angle and radial sample, row-major (angle, sample).
+fn flag_grid(
+    surface: &dyn Surface,
+    r: f64,
+    n: usize,
+    delta: f64,
+) -> Result<Vec<Option<Flag>>, UndefinedError> {
+    let cols = n + 1;
+    let mut grid = vec![None; ANGLES * cols];
+    let mut slopes = vec![0.0; cols];
+    for i in 0..ANGLES {
+        let (s, c) = (TAU * i as f64 / ANGLES as f64).sin_cos();
+        let row = &mut grid[i * cols..(i + 1) * cols];
+        for j in 0..cols {
+            let rho = delta * j as f64;
+            let l = surface.local(rho * c, rho * s)?.radial(c, s);
+            let stretch = (1.0 + l.slope * l.slope).powf(1.5);
+            let kappa = l.curvature_term / stretch;
+            if kappa > 1.0 / r {
+                row[j] = Some(Flag {
+                    radius: 1.0 / kappa,
+                    kink: false,
+                });
+            }
+            slopes[j] = l.slope;
+            if j > 0 {
+                let mean = (slopes[j] - slopes[j - 1]) / delta / stretch;
+                if mean > 1.0 / r {
+                    for k in [j - 1, j] {
+                        let radius = row[k].map_or(f64::INFINITY, |f| f.radius);
+                        if 1.0 / mean < radius {
+                            row[k] = Some(Flag {
+                                radius: 1.0 / mean,
+                                kink: true,
+                            });
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Ok(grid)
+}
+
+/// Connected groups of flagged cells (4-neighbours, θ wrapping round).
+fn components(grid: &[Option<Flag>], cols: usize) -> Vec<Vec<(usize, usize)>> {
+    let mut seen = vec![false; grid.len()];
+    let mut out = Vec::new();
+    for start in 0..grid.len() {
+        if grid[start].is_none() || seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        let mut stack = vec![start];
+        let mut cells = Vec::new();
+        while let Some(k) = stack.pop() {
+            let (i, j) = (k / cols, k % cols);
+            cells.push((i, j));
+            let mut next = vec![
+                ((i + 1) % ANGLES) * cols + j,
+                ((i + ANGLES - 1) % ANGLES) * cols + j,
+            ];
+            if j > 0 {
+                next.push(k - 1);
+            }
+            if j + 1 < cols {
+                next.push(k + 1);
+            }
+            for m in next {
+                if grid[m].is_some() && !seen[m] {
+                    seen[m] = true;
+                    stack.push(m);
+                }
+            }
+        }
+        out.push(cells);
+    }
+    out
+}
+
+/// Extent, sharpness and depth of one zone.
+fn measure(
+    surface: &dyn Surface,
+    nose: &NoseCompensator,
+    grid: &[Option<Flag>],
+    cells: &[(usize, usize)],
+    delta: f64,
+    part_radius: f64,
+) -> Result<ConcaveZone, UndefinedError> {
+    let cols = grid.len() / ANGLES;
+    let flag = |&(i, j): &(usize, usize)| {
+        grid[i * cols + j].map_or(
+            Flag {
+                radius: f64::INFINITY,
+                kink: false,
+            },
+            |f| f,
+        )
+    };
+    let sharpest = cells
+        .iter()
+        .min_by(|a, b| flag(a).radius.total_cmp(&flag(b).radius))
+        .copied()
+        .unwrap_or((0, 0));
+    let mut angles: Vec<usize> = cells.iter().map(|c| c.0).collect();
+    angles.sort_unstable();
+    angles.dedup();
+    let (from, to) = angular_extent(&angles);
+    let mut reps = vec![sharpest.0, from, to, angles[angles.len() / 2]];
+    reps.sort_unstable();
+    reps.dedup();
+    let mut deepest = (0.0, Location::new(0.0, 0.0));
+    for i in reps {
+        let row: Vec<usize> = cells.iter().filter(|c| c.0 == i).map(|c| c.1).collect();
+        let (lo, hi) = (
+            row.iter().min().copied().unwrap_or(0),
+            row.iter().max().copied().unwrap_or(0),
+        );
+        let theta = TAU * i as f64 / ANGLES as f64;
+        let section = Envelope::new(surface, nose, theta, part_radius);
+        let (u, depth) =
+            section.deepest(delta * lo as f64 - delta, delta * hi as f64 + delta, delta)?;
+        if depth > deepest.0 {
+            deepest = (depth, Location::new(u, theta));
+        }
+    }
+    let rhos = cells.iter().map(|c| c.1 as f64 * delta);
+    let step = 360.0 / ANGLES as f64;
+    Ok(ConcaveZone {
+        rho_min_mm: rhos.clone().fold(f64::INFINITY, f64::min),
+        rho_max_mm: rhos.fold(0.0, f64::max),
+        theta_from_deg: from as f64 * step,
+        theta_to_deg: to as f64 * step,
+        min_curvature_radius_mm: flag(&sharpest).radius,
+        slope_kink: cells.iter().any(|c| flag(c).kink),
+        depth_um: deepest.0 * 1e3,
+        at: deepest.1,
+    })
+}
+
+/// The smallest arc of angle indices covering `sorted` (first, last), across 0 if shorter.
+fn angular_extent(sorted: &[usize]) -> (usize, usize) {
+    let n = sorted.len();
+    let mut best_gap = (ANGLES + sorted[0] - sorted[n - 1], n - 1);
+    for k in 0..n - 1 {
+        let gap = sorted[k + 1] - sorted[k];
+        if gap > best_gap.0 {
+            best_gap = (gap, k);
+        }
+    }
+    let k = best_gap.1;
+    (sorted[(k + 1) % n], sorted[k])
+}
+
+/// The nose envelope along one radial section.
+struct Envelope<'a> {
+    surface: &'a dyn Surface,
+    nose: &'a NoseCompensator,
+    c: f64,
+    s: f64,
+    half_width: f64,
+    part_radius: f64,
+}
+
+/// Iterations of golden-section search: shrinks an interval by 0.618^60 ≈ 3·10⁻¹³.
+const GOLDEN_ITERATIONS: usize = 60;
+/// Coarse residual peaks refined per section.
+const REFINED_PEAKS: usize = 3;
+
+impl<'a> Envelope<'a> {
+    fn new(
+        surface: &'a dyn Surface,
+        nose: &'a NoseCompensator,
+        theta: f64,
+        part_radius: f64,
+    ) -> Self {
+        let (s, c) = theta.sin_cos();
+        let half_width = nose.nose_radius() * nose.half_angle().sin();
+        Self {
+            surface,
+            nose,
+            c,
+            s,
+            half_width,
+            part_radius,
+        }
+    }
+
+    fn center(&self, rho_s: f64) -> Result<f64, UndefinedError> {
+        Ok(self
+            .nose
+            .compensate(self.surface, rho_s, self.c, self.s)?
+            .z_center)
+    }
+
+    fn arc(&self, z_center: f64, offset: f64) -> f64 {
+        let r = self.nose.nose_radius();
+        z_center - (r * r - offset * offset).max(0.0).sqrt()
+    }
+
+    fn sag(&self, u: f64) -> Result<f64, UndefinedError> {
+        self.surface.sag(u * self.c, u * self.s)
+    }
+
+    /// The largest closing residual for u in `[lo, hi]`: (u, residual), mm.
+    fn deepest(&self, lo: f64, hi: f64, delta: f64) -> Result<(f64, f64), UndefinedError> {
+        let lo = lo.max(0.0);
+        let hi = hi.min(self.part_radius);
+        let step = (delta / 2.0)
+            .min(self.nose.nose_radius() / 400.0)
+            .min((hi - lo).max(delta) / 8.0);
+        let first = (lo - self.half_width).max(-self.part_radius);
+        let last = (hi + self.half_width).min(self.part_radius);
+        let count = ((last - first) / step).ceil() as usize + 1;
+        let mut positions = Vec::with_capacity(count);
+        for k in 0..count {
+            let p = (first + step * k as f64).min(last);
+            positions.push((p, self.center(p)?));
+        }
+        let coarse = |u: f64| -> Option<(f64, f64)> {
+            positions
+                .iter()
+                .filter(|(p, _)| (u - p).abs() <= self.half_width)
+                .map(|&(p, zc)| (p, self.arc(zc, u - p)))
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+        };
+        // The coarse residual over-estimates (its envelope is a minimum over fewer positions):
+        // it only says where to refine.
+        let mut samples = Vec::new();
+        let mut u = lo;
+        while u <= hi + 1e-15 {
+            if let Some((_, cut)) = coarse(u) {
+                samples.push((u, cut - self.sag(u)?));
+            }
+            u += step;
+        }
+        let mut peaks: Vec<(f64, f64)> = (0..samples.len())
+            .filter(|&k| {
+                let left = k == 0 || samples[k - 1].1 <= samples[k].1;
+                let right = k + 1 == samples.len() || samples[k + 1].1 <= samples[k].1;
+                left && right
+            })
+            .map(|k| samples[k])
+            .collect();
+        peaks.sort_by(|a, b| b.1.total_cmp(&a.1));
+        peaks.truncate(REFINED_PEAKS);
+        let residual = |u: f64| -> Result<f64, UndefinedError> {
+            let Some((p, _)) = coarse(u) else {
+                return Ok(f64::NEG_INFINITY);
+            };
+
+            let lo_p = (p - step).max(u - self.half_width);
+            let hi_p = (p + step).min(u + self.half_width);
+            let (_, cut) = golden(lo_p, hi_p, |q| Ok(-self.arc(self.center(q)?, u - q)))?;
+            Ok(-cut - self.sag(u)?)
+        };
+        let mut best = (lo, 0.0);
+        for (u0, _) in peaks {
+            let (u, res) = golden((u0 - step).max(lo), (u0 + step).min(hi), residual)?;
+            if res > best.1 {
+                best = (u, res);
+            }
+        }
+        Ok(best)
+    }
+}
+
+/// Golden-section search for the maximum of `f` on `[a, b]`: (argmax, max).
+fn golden(
+    mut a: f64,
+    mut b: f64,
+    mut f: impl FnMut(f64) -> Result<f64, UndefinedError>,
+) -> Result<(f64, f64), UndefinedError> {
+    let g = (5f64.sqrt() - 1.0) / 2.0;
+    let mut x1 = b - g * (b - a);
+    let mut x2 = a + g * (b - a);
+    let (mut f1, mut f2) = (f(x1)?, f(x2)?);
+    for _ in 0..GOLDEN_ITERATIONS {
+        if f1 < f2 {
+            a = x1;
+            (x1, f1) = (x2, f2);
+            x2 = a + g * (b - a);
+            f2 = f(x2)?;
+        } else {
+            b = x2;
+            (x2, f2) = (x1, f1);
+            x1 = b - g * (b - a);
+            f1 = f(x1)?;
+        }
+    }
+    Ok(if f1 > f2 { (x1, f1) } else { (x2, f2) })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::compensate::ToolSpec;
+    use crate::surface::Local;
+
+    /// A rotationally symmetric V-groove `z = k·|ρ − ρ₀|`.
+    #[derive(Debug)]
+    struct Groove {
+        k: f64,
+        rho0: f64,
+    }
+
+    impl Surface for Groove {
+        fn local(&self, x: f64, y: f64) -> Result<Local, UndefinedError> {
+            let rho = x.hypot(y);
+            let d = rho - self.rho0;
+            let slope = self.k * d.signum();
+            let (cx, cy) = if rho > 0.0 {
+                (x / rho, y / rho)
+            } else {
+                (1.0, 0.0)
+            };
+            // The bend of the circle of radius ρ adds a tangential second derivative.
+            let t = if rho > 0.0 { slope / rho } else { 0.0 };
+            Ok(Local {
+                z: self.k * d.abs(),
+                zx: slope * cx,
+                zy: slope * cy,
+                zxx: t * cy * cy,
+                zxy: -t * cx * cy,
+                zyy: t * cx * cx,
+            })
+        }
+        fn feature_length_mm(&self) -> f64 {
+            0.5
+        }
+        fn describe(&self) -> String {
+            "groove".into()
+        }
+    }
+
+    #[test]
+    fn a_v_groove_leaves_the_closed_form_fillet() {
+        // The nose rests on both walls: its tip stays r·(1/cos α − 1) above the groove bottom.
+        let (k, r) = (0.2, 0.5);
+        let groove = Groove { k, rho0: 2.0 };
+        let nose = NoseCompensator::new(
+            &ToolSpec {
+                nose_radius_mm: r,
+                included_angle_deg: 100.0,
+            },
+            0.5,
+            4.0,
+        )
+        .unwrap();
+        let zones = concave_zones(&groove, &nose, 4.0).unwrap();
+        assert_eq!(zones.len(), 1, "{zones:?}");
+        let z = &zones[0];
+        let alpha = k.atan();
+        let expect_um = r * (1.0 / alpha.cos() - 1.0) * 1e3;
+        assert!(
+            (z.depth_um - expect_um).abs() < 1e-3,
+            "{} vs {expect_um}",
+            z.depth_um
+        );
+        assert!((z.at.rho_mm - 2.0).abs() < 1e-6);
+        assert!(z.slope_kink);
+        assert!(z.rho_min_mm <= 2.0 && z.rho_max_mm >= 2.0);
+        // The ring spans all angles.
+        assert_eq!((z.theta_to_deg - z.theta_from_deg + 360.0) % 360.0, 359.0);
+    }
+
+    #[test]
+    fn angular_extent_crosses_zero_when_shorter() {
+        assert_eq!(angular_extent(&[0, 1, 2, 358, 359]), (358, 2));
+        assert_eq!(angular_extent(&[10, 11, 12]), (10, 12));
+    }
+}

@@ -1,0 +1,333 @@
+//! Spiral sampling from the outer radius to the centre: `ρ(θ) = R − f·(θ − θ₀)/2π` (paper 003
+//! eq 18, paper 000 "spiral point P"), at constant angle (paper 003 eqs 21–22: N points per
+//! revolution, equal time steps at constant spindle speed) or at constant arc length ΔS along the
+//! planar spiral with a cap on the angle step near the centre.
+//!
+//! Constant angle: the path has K = ⌈N·R/f⌉ steps and starts at `R′ = K·f/N`, at most one angle
+//! step outside R, so that every step is exactly 2π/N, the radial pitch is exactly f per
+//! revolution and the last point lies exactly at ρ = 0. Point k is computed from k alone, never
+//! by accumulation.
+//!
+//! Constant arc: with `b = f/2π` the spiral is `ρ = b·φ` and its arc length from the centre is
+//! `S(φ) = (b/2)·(φ√(1+φ²) + asinh φ)` (closed form of `∫ b√(1+t²) dt`). Each step solves
+//! `S(φ_k) − S(φ_{k+1}) = ΔS` by Newton's method, then takes the smaller of that angle step and
+//! the cap; the last step ends exactly at the centre and may be shorter.
+
+use crate::field::{FieldError, finite, in_range, positive};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::TAU;
+
+/// How points are spaced along the spiral.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Sampling {
+    /// Equal angle steps: `points_per_rev` points per revolution (paper 003 eq 21).
+    ConstantAngle {
+        /// Points per revolution N, 3 … 1 000 000.
+        points_per_rev: u32,
+    },
+    /// Equal arc length along the planar spiral, the angle step capped near the centre.
+    ConstantArc {
+        /// Arc length ΔS between points, mm, > 0.
+        arc_length_mm: f64,
+        /// Largest angle step, degrees, in (0, 90]; default 1°.
+        #[serde(default = "default_max_angle_step")]
+        max_angle_step_deg: f64,
+    },
+}
+
+fn default_max_angle_step() -> f64 {
+    1.0
+}
+
+/// Sense in which the polar angle θ on the part advances along the path, seen from +Z.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Direction {
+    /// θ increases (counter-clockwise).
+    #[default]
+    Ccw,
+    /// θ decreases (clockwise).
+    Cw,
+}
+
+impl Direction {
+    /// +1 for counter-clockwise, −1 for clockwise.
+    pub fn sign(self) -> f64 {
+        match self {
+            Direction::Ccw => 1.0,
+            Direction::Cw => -1.0,
+        }
+    }
+}
+
+/// One sample of the spiral: polar radius and the cumulative (unwrapped) polar angle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpiralPoint {
+    /// ρ, mm, ≥ 0.
+    pub rho: f64,
+    /// θ, radians, cumulative from the start angle (not wrapped).
+    pub theta: f64,
+}
+
+/// A validated spiral.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Spiral {
+    outer_radius: f64,
+    feed: f64,
+    sampling: Sampling,
+    sign: f64,
+    theta0: f64,
+}
+
+/// The most points per revolution.
+pub const MAX_POINTS_PER_REV: u32 = 1_000_000;
+
+impl Spiral {
+    /// Checks the parameters (`field` prefixes name them as in the job) and builds the spiral.
+    pub fn new(
+        outer_radius_mm: f64,
+        feed_mm_per_rev: f64,
+        sampling: &Sampling,
+        direction: Direction,
+        start_angle_deg: f64,
+    ) -> Result<Self, FieldError> {
+        let outer_radius = positive("outer_radius_mm", outer_radius_mm)?;
+        let feed = positive("feed_mm_per_rev", feed_mm_per_rev)?;
+        let theta0 = finite("start_angle_deg", start_angle_deg)?.to_radians();
+        match *sampling {
+            Sampling::ConstantAngle { points_per_rev } => {
+                if !(3..=MAX_POINTS_PER_REV).contains(&points_per_rev) {
+                    return Err(FieldError::new(
+                        "sampling.points_per_rev",
+                        points_per_rev,
+                        format!("must lie in [3, {MAX_POINTS_PER_REV}]"),
+                    ));
+                }
+            }
+            Sampling::ConstantArc {
+                arc_length_mm,
+                max_angle_step_deg,
+            } => {
+                positive("sampling.arc_length_mm", arc_length_mm)?;
+                if max_angle_step_deg <= 0.0 {
+                    return Err(FieldError::new(
+                        "sampling.max_angle_step_deg",
+                        max_angle_step_deg,
+                        "must be > 0",
+                    ));
+                }
+                in_range("sampling.max_angle_step_deg", max_angle_step_deg, 0.0, 90.0)?;
+            }
+        }
+        Ok(Self {
+            outer_radius,
+            feed,
+            sampling: sampling.clone(),
+            sign: direction.sign(),
+            theta0,
+        })
+    }
+
+    /// The radius of the first point, mm (≥ the outer radius asked for; see the module docs).
+    pub fn start_radius_mm(&self) -> f64 {
+        match self.sampling {
+            Sampling::ConstantAngle { points_per_rev } => {
+                self.angle_steps(points_per_rev) as f64 * self.feed / points_per_rev as f64
+            }
+            Sampling::ConstantArc { .. } => self.outer_radius,
+        }
+    }
+
+    /// Feed per revolution, mm.
+    pub fn feed_mm(&self) -> f64 {
+        self.feed
+    }
+
+    /// Number of revolutions from the start to the centre.
+    pub fn revolutions(&self) -> f64 {
+        self.start_radius_mm() / self.feed
+    }
+
+    fn angle_steps(&self, n: u32) -> u64 {
+        // Guard against N·R/f landing a hair above an integer through rounding.
+        let exact = n as f64 * self.outer_radius / self.feed;
+        (exact * (1.0 - 4.0 * f64::EPSILON)).ceil().max(1.0) as u64
+    }
+
+    /// The number of points (exact for constant angle, an estimate within a few points for
+    /// constant arc), for progress bars.
+    pub fn point_count_hint(&self) -> u64 {
+        match self.sampling {
+            Sampling::ConstantAngle { points_per_rev } => self.angle_steps(points_per_rev) + 1,
+            Sampling::ConstantArc {
+                arc_length_mm,
+                max_angle_step_deg,
+            } => {
+                let b = self.feed / TAU;
+                let cap = max_angle_step_deg.to_radians();
+                // Inside ρ_cap the cap binds: the angle steps are `cap`.
+                let rho_cap = (arc_length_mm / cap).min(self.outer_radius);
+                let arc = arc_length(b, self.outer_radius / b) - arc_length(b, rho_cap / b);
+                ((arc / arc_length_mm).ceil() + (rho_cap / b / cap).ceil()) as u64 + 1
+            }
+        }
+    }
+
+    /// The points, from the outer radius to the centre, streamed.
+    pub fn points(&self) -> SpiralPoints {
+        let state = match self.sampling {
+            Sampling::ConstantAngle { points_per_rev } => State::Angle {
+                k: 0,
+                steps: self.angle_steps(points_per_rev),
+                n: points_per_rev as f64,
+            },
+            Sampling::ConstantArc {
+                arc_length_mm,
+                max_angle_step_deg,
+            } => {
+                let b = self.feed / TAU;
+                let phi = self.outer_radius / b;
+                State::Arc {
+                    b,
+                    phi0: phi,
+                    phi,
+                    ds: arc_length_mm,
+                    cap: max_angle_step_deg.to_radians(),
+                }
+            }
+        };
+        SpiralPoints {
+            spiral: self.clone(),
+            state,
+            done: false,
+        }
+    }
+}
+
+/// `S(φ)`: arc length of `ρ = bφ` from the centre to φ.
+pub fn arc_length(b: f64, phi: f64) -> f64 {
+    0.5 * b * (phi * (1.0 + phi * phi).sqrt() + phi.asinh())
+}
+
+/// The φ < `phi` at arc length `ds` further in, by Newton's method on `S`.
+fn step_in(b: f64, phi: f64, ds: f64) -> f64 {
+    let target = arc_length(b, phi) - ds;
+    if target <= 0.0 {
+        return 0.0;
+    }
+    let mut x = phi - ds / (b * (1.0 + phi * phi).sqrt());
+    for _ in 0..50 {
+        let dx = (arc_length(b, x) - target) / (b * (1.0 + x * x).sqrt());
+        x -= dx;
+        if dx.abs() <= 1e-15 * x.max(1.0) {
+            break;
+        }
+    }
+    x.clamp(0.0, phi)
+}
+
+#[derive(Debug, Clone)]
+enum State {
+    Angle {
+        k: u64,
+        steps: u64,
+        n: f64,
+    },
+    Arc {
+        b: f64,
+        phi0: f64,
+        phi: f64,
+        ds: f64,
+        cap: f64,
+    },
+}
+
+/// Iterator over the points of a [`Spiral`].
+#[derive(Debug, Clone)]
+pub struct SpiralPoints {
+    spiral: Spiral,
+    state: State,
+    done: bool,
+}
+
+impl Iterator for SpiralPoints {
+    type Item = SpiralPoint;
+
+    fn next(&mut self) -> Option<SpiralPoint> {
+        if self.done {
+            return None;
+        }
+        let (t0, sign) = (self.spiral.theta0, self.spiral.sign);
+        match &mut self.state {
+            State::Angle { k, steps, n } => {
+                let remaining = (*steps - *k) as f64;
+                let p = SpiralPoint {
+                    rho: remaining * self.spiral.feed / *n,
+                    theta: t0 + sign * TAU * (*k as f64) / *n,
+                };
+                self.done = *k == *steps;
+                *k += 1;
+                Some(p)
+            }
+            State::Arc {
+                b,
+                phi0,
+                phi,
+                ds,
+                cap,
+            } => {
+                let p = SpiralPoint {
+                    rho: *b * *phi,
+                    theta: t0 + sign * (*phi0 - *phi),
+                };
+                if *phi == 0.0 {
+                    self.done = true;
+                } else {
+                    *phi = step_in(*b, *phi, *ds).max(*phi - *cap);
+                }
+                Some(p)
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn arc_length_is_the_integral() {
+        // Trapezoid rule on b√(1+t²) against the closed form.
+        let (b, phi) = (0.01, 30.0);
+        let n = 200_000;
+        let h = phi / n as f64;
+        let f = |t: f64| b * (1.0 + t * t).sqrt();
+        let trap: f64 = (0..n)
+            .map(|i| 0.5 * h * (f(i as f64 * h) + f((i + 1) as f64 * h)))
+            .sum();
+        assert!((trap - arc_length(b, phi)).abs() < 1e-8);
+    }
+
+    #[test]
+    fn bad_parameters_name_their_field() {
+        let s = Sampling::ConstantAngle { points_per_rev: 2 };
+        let e = Spiral::new(5.0, 0.01, &s, Direction::Ccw, 0.0).unwrap_err();
+        assert_eq!(e.field, "sampling.points_per_rev");
+        let s = Sampling::ConstantArc {
+            arc_length_mm: 0.01,
+            max_angle_step_deg: 0.0,
+        };
+        let e = Spiral::new(5.0, 0.01, &s, Direction::Ccw, 0.0).unwrap_err();
+        assert_eq!(e.field, "sampling.max_angle_step_deg");
+        let s = Sampling::ConstantAngle {
+            points_per_rev: 100,
+        };
+        assert_eq!(
+            Spiral::new(5.0, -1.0, &s, Direction::Ccw, 0.0)
+                .unwrap_err()
+                .field,
+            "feed_mm_per_rev"
+        );
+    }
+}

@@ -1,0 +1,268 @@
+//! Even asphere: `z = c·r² / (1 + √(1 − (1+k)·c²·r²)) + Σ A₂ᵢ·r²ⁱ`, i = 2…10 (the ISO 10110-12
+//! form; plane for c = 0 and no terms, sphere for k = 0, paraboloid for k = −1).
+//!
+//! Derivatives are taken in s = r²: `dz/ds = c / (2√q) + Σ i·A₂ᵢ·sⁱ⁻¹` and
+//! `d²z/ds² = (1+k)·c³ / (4·q^{3/2}) + Σ i(i−1)·A₂ᵢ·sⁱ⁻²` with `q = 1 − (1+k)c²s`, then
+//! `∂z/∂x = 2x·z_s`, `∂²z/∂x² = 2z_s + 4x²·z_ss`, `∂²z/∂x∂y = 4xy·z_ss`. The conic is undefined
+//! where q ≤ 0 (beyond the hyperboloid's or ellipsoid's rim, where the slope turns vertical).
+
+use super::{Local, Surface, UndefinedError};
+use crate::field::{FieldError, finite};
+use serde::{Deserialize, Serialize};
+
+/// The largest number of polynomial terms: A4 … A20.
+pub const MAX_TERMS: usize = 9;
+
+/// Job entry of an even asphere. Give exactly one of `radius_mm` and `curvature_per_mm`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AsphereSpec {
+    /// Vertex radius of curvature R, mm, non-zero; positive when the centre of curvature lies on
+    /// +Z (the surface rises away from the axis). Use `curvature_per_mm: 0` for a plane.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radius_mm: Option<f64>,
+    /// Vertex curvature c = 1/R, 1/mm; 0 for a plane.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curvature_per_mm: Option<f64>,
+    /// Conic constant k (0 sphere, −1 paraboloid, < −1 hyperboloid, > 0 oblate ellipsoid);
+    /// default 0.
+    #[serde(default)]
+    pub conic: f64,
+    /// Polynomial coefficients A4, A6, …, A20 of r⁴ … r²⁰ in mm^(1−2i); at most 9, default none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub coefficients: Vec<f64>,
+}
+
+/// An even asphere, validated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Asphere {
+    c: f64,
+    k: f64,
+    /// `a[i]` multiplies `s^(i+2)`, s = r².
+    a: Vec<f64>,
+}
+
+impl Asphere {
+    /// Checks a spec and builds the surface.
+    pub fn new(spec: &AsphereSpec) -> Result<Self, FieldError> {
+        let c = match (spec.radius_mm, spec.curvature_per_mm) {
+            (Some(r), None) if r.is_finite() && r != 0.0 => 1.0 / r,
+            (Some(r), None) => {
+                return Err(FieldError::new(
+                    "radius_mm",
+                    r,
+                    "must be finite and non-zero (use curvature_per_mm: 0 for a plane)",
+                ));
+            }
+            (None, Some(c)) => finite("curvature_per_mm", c)?,
+            (Some(r), Some(_)) => {
+                return Err(FieldError::new(
+                    "radius_mm",
+                    r,
+                    "give radius_mm or curvature_per_mm, not both",
+                ));
+            }
+            (None, None) => {
+                return Err(FieldError::new(
+                    "radius_mm",
+                    "missing",
+                    "give radius_mm or curvature_per_mm (0 for a plane)",
+                ));
+            }
+        };
+        let k = finite("conic", spec.conic)?;
+        if spec.coefficients.len() > MAX_TERMS {
+            return Err(FieldError::new(
+                "coefficients",
+                format!("{} terms", spec.coefficients.len()),
+                format!("at most {MAX_TERMS} terms (A4 … A20)"),
+            ));
+        }
+        for (i, &a) in spec.coefficients.iter().enumerate() {
+            finite(&format!("coefficients[{i}] (A{})", 2 * i + 4), a)?;
+        }
+        Ok(Self {
+            c,
+            k,
+            a: spec.coefficients.clone(),
+        })
+    }
+
+    /// A plane z = 0.
+    pub fn plane() -> Self {
+        Self {
+            c: 0.0,
+            k: 0.0,
+            a: Vec::new(),
+        }
+    }
+
+    /// The radius where the conic turns vertical, if any, mm.
+    pub fn rim_radius_mm(&self) -> Option<f64> {
+        let p = (1.0 + self.k) * self.c * self.c;
+        (p > 0.0).then(|| (1.0 / p).sqrt())
+    }
+
+    /// z, z_s and z_ss as functions of s = r², or the reason there is none.
+    fn in_s(&self, s: f64) -> Result<[f64; 3], String> {
+        let (c, k) = (self.c, self.k);
+        let q = 1.0 - (1.0 + k) * c * c * s;
+        if q <= 0.0 {
+            let rim = self.rim_radius_mm().unwrap_or(f64::INFINITY);
+            return Err(format!(
+                "beyond the conic's rim at radius {rim} mm, where 1 − (1+k)c²r² ≤ 0"
+            ));
+        }
+        let w = q.sqrt();
+        let mut z = c * s / (1.0 + w);
+        let mut zs = c / (2.0 * w);
+        let mut zss = (1.0 + k) * c * c * c / (4.0 * q * w);
+        // Horner for P(s) = Σ a_i s^(i+2), with P' and P''.
+        let (mut p, mut dp, mut ddp) = (0.0, 0.0, 0.0);
+        for &a in self.a.iter().rev() {
+            ddp = ddp * s + 2.0 * dp;
+            dp = dp * s + p;
+            p = p * s + a;
+        }
+        // P(s) = s² · Q(s) where Q = p: P' = 2sQ + s²Q', P'' = 2Q + 4sQ' + s²Q''.
+        z += s * s * p;
+        zs += 2.0 * s * p + s * s * dp;
+        zss += 2.0 * p + 4.0 * s * dp + s * s * ddp;
+        Ok([z, zs, zss])
+    }
+
+    fn undefined(&self, x: f64, y: f64, reason: String) -> UndefinedError {
+        UndefinedError {
+            surface: "even asphere",
+            x_mm: x,
+            y_mm: y,
+            radius_mm: x.hypot(y),
+            reason,
+        }
+    }
+}
+
+impl Surface for Asphere {
+    fn local(&self, x: f64, y: f64) -> Result<Local, UndefinedError> {
+        let [z, zs, zss] = self
+            .in_s(x * x + y * y)
+            .map_err(|r| self.undefined(x, y, r))?;
+        Ok(Local {
+            z,
+            zx: 2.0 * x * zs,
+            zy: 2.0 * y * zs,
+            zxx: 2.0 * zs + 4.0 * x * x * zss,
+            zxy: 4.0 * x * y * zss,
+            zyy: 2.0 * zs + 4.0 * y * y * zss,
+        })
+    }
+
+    fn feature_length_mm(&self) -> f64 {
+        f64::INFINITY
+    }
+
+    fn describe(&self) -> String {
+        let r = if self.c == 0.0 {
+            "plane".to_string()
+        } else {
+            format!("R {} mm", 1.0 / self.c)
+        };
+        let terms: Vec<String> = self
+            .a
+            .iter()
+            .enumerate()
+            .map(|(i, a)| format!("A{} {a:e}", 2 * i + 4))
+            .collect();
+        format!(
+            "even asphere {r}, k {}{}{}",
+            self.k,
+            if terms.is_empty() { "" } else { ", " },
+            terms.join(", ")
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sphere(r: f64) -> Asphere {
+        Asphere::new(&AsphereSpec {
+            radius_mm: Some(r),
+            ..Default::default()
+        })
+        .unwrap()
+    }
+
+    #[test]
+    fn sphere_matches_closed_form() {
+        let s = sphere(20.0);
+        for &(x, y) in &[(0.0, 0.0), (3.0, -4.0), (10.0, 12.0), (-15.0, 5.0)] {
+            let r2: f64 = x * x + y * y;
+            let z = 20.0 - (400.0 - r2).sqrt();
+            assert!((s.local(x, y).unwrap().z - z).abs() < 1e-13, "{x} {y}");
+        }
+        // Negative radius: the mirror image.
+        assert!(
+            (sphere(-20.0).local(3.0, 4.0).unwrap().z + 20.0 - (400.0f64 - 25.0).sqrt()).abs()
+                < 1e-13
+        );
+    }
+
+    #[test]
+    fn paraboloid_and_polynomial_match_closed_form() {
+        let spec = AsphereSpec {
+            radius_mm: Some(50.0),
+            conic: -1.0,
+            coefficients: vec![1e-5, -2e-8, 3e-11],
+            ..Default::default()
+        };
+        let s = Asphere::new(&spec).unwrap();
+        let (x, y) = (6.0, -8.0);
+        let r2: f64 = 100.0;
+        let z = r2 / 100.0 + 1e-5 * r2.powi(2) - 2e-8 * r2.powi(3) + 3e-11 * r2.powi(4);
+        assert!((s.local(x, y).unwrap().z - z).abs() < 1e-14);
+    }
+
+    #[test]
+    fn beyond_the_rim_is_an_error_naming_the_radius() {
+        let e = sphere(5.0).local(3.0, 4.0).unwrap_err();
+        assert_eq!(e.radius_mm, 5.0);
+        assert!(e.to_string().contains("even asphere"), "{e}");
+    }
+
+    #[test]
+    fn spec_errors_name_the_field() {
+        let both = AsphereSpec {
+            radius_mm: Some(1.0),
+            curvature_per_mm: Some(1.0),
+            ..Default::default()
+        };
+        assert_eq!(Asphere::new(&both).unwrap_err().field, "radius_mm");
+        let zero = AsphereSpec {
+            radius_mm: Some(0.0),
+            ..Default::default()
+        };
+        assert!(
+            Asphere::new(&zero)
+                .unwrap_err()
+                .allowed
+                .contains("non-zero")
+        );
+        let many = AsphereSpec {
+            curvature_per_mm: Some(0.0),
+            coefficients: vec![0.0; 10],
+            ..Default::default()
+        };
+        assert_eq!(Asphere::new(&many).unwrap_err().field, "coefficients");
+        let nan = AsphereSpec {
+            curvature_per_mm: Some(0.0),
+            coefficients: vec![0.0, f64::NAN],
+            ..Default::default()
+        };
+        assert_eq!(
+            Asphere::new(&nan).unwrap_err().field,
+            "coefficients[1] (A6)"
+        );
+    }
+}

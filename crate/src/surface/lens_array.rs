@@ -1,0 +1,274 @@
+//! Microlens array: spherical lenslets of radius R and clear aperture a on a rectangular or
+//! hexagonal grid of pitch p, convex or concave, on a flat land at z = 0 (paper 004, section 3.2
+//! and Table 1: Ø10 mm, a = 1 mm, p = 1 mm, R = 2.84 mm, lenslet sag −44.4 µm).
+//!
+//! A lenslet centred at c has, for ρ = |(x, y) − c| ≤ a/2, the sag
+//! `z = ±(√(R² − (a/2)²) − √(R² − ρ²))` (− convex, + concave), so its rim meets the land at
+//! z = 0 and its vertex lies at ∓(R − √(R² − a²/4)). Only lenslets whose whole aperture lies
+//! inside the part (|c| + a/2 ≤ part radius) are cut; the rest of the part is land. Because
+//! a ≤ p, a point can only lie in the lenslet of its nearest grid node, found in O(1).
+//! A lenslet sits on the spindle axis; grid rows run along X.
+
+use super::{Local, Surface, UndefinedError};
+use crate::field::{FieldError, positive};
+use serde::{Deserialize, Serialize};
+
+/// Lattice of the lenslet centres.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Grid {
+    /// Centres at `p·(i, j)`.
+    Rectangular,
+    /// Centres at `p·(i + j/2, j·√3/2)`.
+    Hexagonal,
+}
+
+/// Whether the lenslets stand out of the land or are dug into it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Form {
+    /// Bumps: vertex at +sag.
+    Convex,
+    /// Dimples: vertex at −sag (paper 004's −44.4 µm).
+    Concave,
+}
+
+/// Job entry of a lens array.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LensArraySpec {
+    /// Radius of curvature of each lenslet, mm, ≥ aperture/2.
+    pub lens_radius_mm: f64,
+    /// Clear aperture (diameter) of each lenslet, mm, ≤ pitch.
+    pub aperture_mm: f64,
+    /// Distance between neighbouring lenslet centres, mm.
+    pub pitch_mm: f64,
+    /// `rectangular` or `hexagonal`.
+    pub grid: Grid,
+    /// `convex` or `concave`.
+    pub form: Form,
+}
+
+impl LensArraySpec {
+    /// Paper 004, Table 1: R 2.84 mm, aperture 1 mm, pitch 1 mm, concave (sag −44.4 µm) on a
+    /// rectangular grid; the part is Ø10 mm.
+    pub fn paper004() -> Self {
+        Self {
+            lens_radius_mm: 2.84,
+            aperture_mm: 1.0,
+            pitch_mm: 1.0,
+            grid: Grid::Rectangular,
+            form: Form::Concave,
+        }
+    }
+}
+
+/// A lens array, validated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LensArray {
+    spec: LensArraySpec,
+    half_aperture: f64,
+    /// √(R² − (a/2)²): the rim height offset.
+    rim_w: f64,
+    /// +1 concave, −1 convex.
+    sign: f64,
+    /// Largest |centre| of a lenslet that is cut.
+    max_centre_radius: f64,
+}
+
+impl LensArray {
+    /// Checks a spec and builds the surface for a part of radius `part_radius_mm`.
+    pub fn new(spec: &LensArraySpec, part_radius_mm: f64) -> Result<Self, FieldError> {
+        let r = positive("lens_radius_mm", spec.lens_radius_mm)?;
+        let a = positive("aperture_mm", spec.aperture_mm)?;
+        let p = positive("pitch_mm", spec.pitch_mm)?;
+        if a > p {
+            return Err(FieldError::new(
+                "aperture_mm",
+                a,
+                format!("must not exceed pitch_mm ({p} mm)"),
+            ));
+        }
+        if a > 2.0 * r {
+            return Err(FieldError::new(
+                "aperture_mm",
+                a,
+                format!("must not exceed twice lens_radius_mm ({} mm)", 2.0 * r),
+            ));
+        }
+        let half_aperture = a / 2.0;
+        let sign = match spec.form {
+            Form::Concave => 1.0,
+            Form::Convex => -1.0,
+        };
+        Ok(Self {
+            spec: spec.clone(),
+            half_aperture,
+            rim_w: (r * r - half_aperture * half_aperture).sqrt(),
+            sign,
+            max_centre_radius: part_radius_mm - half_aperture + 1e-9,
+        })
+    }
+
+    /// Signed sag of each lenslet's vertex below (concave, negative) or above the land, mm.
+    pub fn lenslet_sag_mm(&self) -> f64 {
+        -self.sign * (self.spec.lens_radius_mm - self.rim_w)
+    }
+
+    /// The grid node nearest to (x, y).
+    fn nearest_centre(&self, x: f64, y: f64) -> (f64, f64) {
+        let p = self.spec.pitch_mm;
+        match self.spec.grid {
+            Grid::Rectangular => ((x / p).round() * p, (y / p).round() * p),
+            Grid::Hexagonal => {
+                let row = p * 3f64.sqrt() / 2.0;
+                let j0 = (y / row).round();
+                let mut best = (f64::INFINITY, 0.0, 0.0);
+                for j in [j0 - 1.0, j0, j0 + 1.0] {
+                    let cx = ((x / p - j / 2.0).round() + j / 2.0) * p;
+                    let cy = j * row;
+                    let d = (x - cx).powi(2) + (y - cy).powi(2);
+                    if d < best.0 {
+                        best = (d, cx, cy);
+                    }
+                }
+                (best.1, best.2)
+            }
+        }
+    }
+
+    /// Number of lenslets cut on the part.
+    pub fn lenslet_count(&self) -> usize {
+        let p = self.spec.pitch_mm;
+        let n = (self.max_centre_radius / p).ceil() as i64 + 2;
+        let mut count = 0;
+        for i in -n..=n {
+            for j in -n..=n {
+                let (cx, cy) = match self.spec.grid {
+                    Grid::Rectangular => (i as f64 * p, j as f64 * p),
+                    Grid::Hexagonal => (
+                        (i as f64 + j as f64 / 2.0) * p,
+                        j as f64 * p * 3f64.sqrt() / 2.0,
+                    ),
+                };
+                if cx.hypot(cy) <= self.max_centre_radius {
+                    count += 1;
+                }
+            }
+        }
+        count
+    }
+}
+
+impl Surface for LensArray {
+    fn local(&self, x: f64, y: f64) -> Result<Local, UndefinedError> {
+        let (cx, cy) = self.nearest_centre(x, y);
+        let (dx, dy) = (x - cx, y - cy);
+        let rho2 = dx * dx + dy * dy;
+        let h = self.half_aperture;
+        if rho2 > h * h || cx.hypot(cy) > self.max_centre_radius {
+            return Ok(Local::default());
+        }
+        let r2 = self.spec.lens_radius_mm * self.spec.lens_radius_mm;
+        let w = (r2 - rho2).sqrt();
+        let s = self.sign;
+        let w3 = w * w * w;
+        Ok(Local {
+            z: s * (self.rim_w - w),
+            zx: s * dx / w,
+            zy: s * dy / w,
+            zxx: s * (r2 - dy * dy) / w3,
+            zxy: s * dx * dy / w3,
+            zyy: s * (r2 - dx * dx) / w3,
+        })
+    }
+
+    fn feature_length_mm(&self) -> f64 {
+        let land = self.spec.pitch_mm - self.spec.aperture_mm;
+        if land > 0.0 {
+            self.half_aperture.min(land)
+        } else {
+            self.half_aperture
+        }
+    }
+
+    fn describe(&self) -> String {
+        let s = &self.spec;
+        format!(
+            "lens array: {} {:?} lenslets, R {} mm, aperture {} mm, pitch {} mm, {:?} grid, lenslet sag {:.4} µm",
+            self.lenslet_count(),
+            s.form,
+            s.lens_radius_mm,
+            s.aperture_mm,
+            s.pitch_mm,
+            s.grid,
+            self.lenslet_sag_mm() * 1e3
+        )
+        .to_lowercase()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn paper004_lenslet_sag_is_minus_44_4_um() {
+        let l = LensArray::new(&LensArraySpec::paper004(), 5.0).unwrap();
+        // Table 1 gives −44.4 µm; the exact value is 2.84 − √(2.84² − 0.25) mm.
+        assert!((l.lenslet_sag_mm() * 1e3 - -44.4).abs() < 0.05);
+        assert!((l.local(0.0, 0.0).unwrap().z - l.lenslet_sag_mm()).abs() < 1e-15);
+        assert!((l.local(2.0, -3.0).unwrap().z - l.lenslet_sag_mm()).abs() < 1e-15);
+        // Corner of a cell: land.
+        assert_eq!(l.local(0.5, 0.5).unwrap(), Local::default());
+        // Centres with |c| ≤ 4.5 mm on the unit grid.
+        let brute = (-5i32..=5)
+            .flat_map(|i| (-5i32..=5).map(move |j| (i, j)))
+            .filter(|&(i, j)| ((i * i + j * j) as f64).sqrt() <= 4.5)
+            .count();
+        assert_eq!(l.lenslet_count(), brute);
+        // A lenslet at (5, 0) would cross the part edge: land there.
+        assert_eq!(l.local(4.9, 0.0).unwrap().z, 0.0);
+    }
+
+    #[test]
+    fn hexagonal_lenslets_sit_on_the_lattice() {
+        let spec = LensArraySpec {
+            grid: Grid::Hexagonal,
+            form: Form::Convex,
+            ..LensArraySpec::paper004()
+        };
+        let l = LensArray::new(&spec, 5.0).unwrap();
+        let row = 3f64.sqrt() / 2.0;
+        for &(cx, cy) in &[(0.5, row), (-1.5, -row), (1.0, 2.0 * row), (2.0, 0.0)] {
+            let v = l.local(cx + 0.1, cy - 0.05).unwrap();
+            let rho2: f64 = 0.01 + 0.0025;
+            let z = (2.84f64 * 2.84 - rho2).sqrt() - (2.84f64 * 2.84 - 0.25).sqrt();
+            assert!((v.z - z).abs() < 1e-15, "{cx} {cy}");
+        }
+    }
+
+    #[test]
+    fn parameters_that_make_no_array_are_rejected() {
+        let s = LensArraySpec {
+            aperture_mm: 1.5,
+            ..LensArraySpec::paper004()
+        };
+        assert_eq!(LensArray::new(&s, 5.0).unwrap_err().field, "aperture_mm");
+        let s = LensArraySpec {
+            lens_radius_mm: 0.4,
+            ..LensArraySpec::paper004()
+        };
+        assert!(
+            LensArray::new(&s, 5.0)
+                .unwrap_err()
+                .allowed
+                .contains("twice lens_radius_mm")
+        );
+        let s = LensArraySpec {
+            pitch_mm: -1.0,
+            ..LensArraySpec::paper004()
+        };
+        assert_eq!(LensArray::new(&s, 5.0).unwrap_err().field, "pitch_mm");
+    }
+}

@@ -1,0 +1,203 @@
+//! Surfaces `z = f(x, y)` in millimetres with analytic gradient and second derivatives.
+//!
+//! Sag is measured along +Z from the vertex plane, +Z pointing out of the material towards the
+//! tool (DESIGN.md, "Domain primer"). Every family implements [`Surface`]; the planner only ever
+//! asks for [`Local`] values (sag, gradient, Hessian) at Cartesian points, and for the radial
+//! section at a spindle angle through [`Local::radial`], which is the polar form `z = f(ρ, θ)`
+//! of paper 003 eq (17) differentiated along ρ.
+//!
+//! The families of this module:
+//! - [`asphere::Asphere`]: even asphere (plane and sphere included);
+//! - [`xy_polynomial::XyPolynomial`]: XY polynomial up to degree 10 on an asphere base;
+//! - [`lens_array::LensArray`]: spherical lenslets on a rectangular or hexagonal grid (paper 004,
+//!   Table 1 preset);
+//! - [`sinusoid::Sinusoid`]: the sinusoidal grid `A·sin(2πx/λx + φx)·sin(2πy/λy + φy)`.
+
+pub mod asphere;
+pub mod lens_array;
+pub mod sinusoid;
+pub mod xy_polynomial;
+
+use crate::field::FieldError;
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+pub use asphere::{Asphere, AsphereSpec};
+pub use lens_array::{LensArray, LensArraySpec};
+pub use sinusoid::{Sinusoid, SinusoidSpec};
+pub use xy_polynomial::{XyPolynomial, XyPolynomialSpec};
+
+/// Sag and its first and second derivatives at one point (mm, mm/mm, 1/mm).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Local {
+    /// Sag z, mm.
+    pub z: f64,
+    /// ∂z/∂x.
+    pub zx: f64,
+    /// ∂z/∂y.
+    pub zy: f64,
+    /// ∂²z/∂x², 1/mm.
+    pub zxx: f64,
+    /// ∂²z/∂x∂y, 1/mm.
+    pub zxy: f64,
+    /// ∂²z/∂y², 1/mm.
+    pub zyy: f64,
+}
+
+/// The radial section of a surface at one spindle angle: sag and its first two derivatives
+/// along the signed radial coordinate ρ (the line through the axis at angle θ).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Radial {
+    /// Sag, mm.
+    pub z: f64,
+    /// dz/dρ (the slope `f′` of paper 003 eq 20).
+    pub slope: f64,
+    /// d²z/dρ², 1/mm.
+    pub curvature_term: f64,
+}
+
+impl Local {
+    /// The derivatives along the unit direction `(cos θ, sin θ)`.
+    pub fn radial(&self, cos_t: f64, sin_t: f64) -> Radial {
+        Radial {
+            z: self.z,
+            slope: self.zx * cos_t + self.zy * sin_t,
+            curvature_term: self.zxx * cos_t * cos_t
+                + 2.0 * self.zxy * cos_t * sin_t
+                + self.zyy * sin_t * sin_t,
+        }
+    }
+
+    /// ∂z/∂θ at polar radius ρ: `ρ(−zx sin θ + zy cos θ)`, mm per radian.
+    pub fn angular_slope(&self, rho: f64, cos_t: f64, sin_t: f64) -> f64 {
+        rho * (-self.zx * sin_t + self.zy * cos_t)
+    }
+
+    /// The unit normal pointing to +Z (towards the tool).
+    pub fn normal(&self) -> [f64; 3] {
+        let n = (1.0 + self.zx * self.zx + self.zy * self.zy).sqrt();
+        [-self.zx / n, -self.zy / n, 1.0 / n]
+    }
+}
+
+impl std::ops::Add for Local {
+    type Output = Local;
+    fn add(self, o: Local) -> Local {
+        Local {
+            z: self.z + o.z,
+            zx: self.zx + o.zx,
+            zy: self.zy + o.zy,
+            zxx: self.zxx + o.zxx,
+            zxy: self.zxy + o.zxy,
+            zyy: self.zyy + o.zyy,
+        }
+    }
+}
+
+/// A point where a surface has no value.
+///
+/// ```
+/// use spiralcam::surface::{Asphere, AsphereSpec, Surface};
+/// // A sphere of radius 5 mm has no sag beyond 5 mm from its axis.
+/// let s = Asphere::new(&AsphereSpec { radius_mm: Some(5.0), ..Default::default() }).unwrap();
+/// let e = s.local(6.0, 0.0).unwrap_err();
+/// assert!(e.to_string().contains("radius 6 mm"));
+/// ```
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("{surface} is undefined at radius {radius_mm} mm (x {x_mm} mm, y {y_mm} mm): {reason}")]
+pub struct UndefinedError {
+    /// The family, e.g. `even asphere`.
+    pub surface: &'static str,
+    /// Where, mm.
+    pub x_mm: f64,
+    /// Where, mm.
+    pub y_mm: f64,
+    /// Distance from the axis, mm.
+    pub radius_mm: f64,
+    /// Why, with the limit.
+    pub reason: String,
+}
+
+/// A surface of the library: sag with analytic derivatives.
+pub trait Surface: Send + Sync + std::fmt::Debug {
+    /// Sag, gradient and Hessian at `(x, y)`, mm.
+    fn local(&self, x: f64, y: f64) -> Result<Local, UndefinedError>;
+
+    /// Sag only, mm. Families override it where the sag alone is cheaper.
+    fn sag(&self, x: f64, y: f64) -> Result<f64, UndefinedError> {
+        Ok(self.local(x, y)?.z)
+    }
+
+    /// The shortest lateral distance, mm, over which the slope can change sign or jump (a
+    /// lenslet's half aperture, a quarter wavelength). Samplers that must not step over a
+    /// feature use a fraction of it.
+    fn feature_length_mm(&self) -> f64;
+
+    /// One line restating the definition, for NC headers and reports.
+    fn describe(&self) -> String;
+}
+
+/// The surface of a job, one of the families (JSON: an object with `"type"` naming the family).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case")]
+pub enum SurfaceSpec {
+    /// Even asphere (plane and sphere included).
+    Asphere(AsphereSpec),
+    /// XY polynomial up to degree 10 on an asphere base.
+    XyPolynomial(XyPolynomialSpec),
+    /// Spherical lenslets on a grid.
+    LensArray(LensArraySpec),
+    /// Product of two sines.
+    Sinusoid(SinusoidSpec),
+}
+
+impl SurfaceSpec {
+    /// Builds the surface for a part of radius `part_radius_mm`, checking every parameter.
+    pub fn build(&self, part_radius_mm: f64) -> Result<Box<dyn Surface>, FieldError> {
+        let inner = |e: FieldError| e.within("surface");
+        Ok(match self {
+            SurfaceSpec::Asphere(s) => Box::new(Asphere::new(s).map_err(inner)?),
+            SurfaceSpec::XyPolynomial(s) => Box::new(XyPolynomial::new(s).map_err(inner)?),
+            SurfaceSpec::LensArray(s) => {
+                Box::new(LensArray::new(s, part_radius_mm).map_err(inner)?)
+            }
+            SurfaceSpec::Sinusoid(s) => Box::new(Sinusoid::new(s).map_err(inner)?),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn radial_derivatives_rotate_the_hessian() {
+        let l = Local {
+            z: 1.0,
+            zx: 0.3,
+            zy: -0.2,
+            zxx: 2.0,
+            zxy: 0.5,
+            zyy: -1.0,
+        };
+        let (c, s) = (0.6_f64, 0.8_f64);
+        let r = l.radial(c, s);
+        assert!((r.slope - (0.3 * 0.6 - 0.2 * 0.8)).abs() < 1e-15);
+        assert!((r.curvature_term - (2.0 * 0.36 + 2.0 * 0.5 * 0.48 - 0.64)).abs() < 1e-15);
+        let n = l.normal();
+        assert!(((n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn unknown_fields_and_families_are_rejected() {
+        let bad = r#"{"type":"asphere","radius_mm":10,"conic":0,"colour":"red"}"#;
+        let e = serde_json::from_str::<SurfaceSpec>(bad)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("colour"), "{e}");
+        let e = serde_json::from_str::<SurfaceSpec>(r#"{"type":"torus"}"#)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("torus"), "{e}");
+    }
+}

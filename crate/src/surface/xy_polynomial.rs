@@ -1,0 +1,200 @@
+//! XY polynomial on an asphere base: `z = asphere(x, y) + Σ cᵢⱼ·(x/N)ⁱ·(y/N)ʲ`, i + j ≤ 10,
+//! with normalisation radius N so that every coefficient is in millimetres.
+//!
+//! Derivatives term by term: `∂/∂x (x/N)ⁱ = (i/N)(x/N)ⁱ⁻¹`. Zemax's "Extended Polynomial" uses
+//! the same normalised monomials; its plain "XY polynomial" uses un-normalised ones, which are
+//! these with N = 1.
+
+use super::{Asphere, AsphereSpec, Local, Surface, UndefinedError};
+use crate::field::{FieldError, finite, positive};
+use serde::{Deserialize, Serialize};
+
+/// The highest total degree i + j.
+pub const MAX_DEGREE: u32 = 10;
+
+/// One term `coefficient_mm · (x/N)^x · (y/N)^y`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct XyTerm {
+    /// Power of x/N, 0…10.
+    pub x: u32,
+    /// Power of y/N, 0…10 − x.
+    pub y: u32,
+    /// Coefficient, mm.
+    pub coefficient_mm: f64,
+}
+
+/// Job entry of an XY polynomial surface.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct XyPolynomialSpec {
+    /// The base asphere (use `{"curvature_per_mm": 0}` for none).
+    pub base: AsphereSpec,
+    /// Normalisation radius N, mm, > 0.
+    pub norm_radius_mm: f64,
+    /// The terms; each (x, y) pair at most once, x + y ≤ 10.
+    pub terms: Vec<XyTerm>,
+}
+
+/// An XY polynomial surface, validated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct XyPolynomial {
+    base: Asphere,
+    norm: f64,
+    terms: Vec<(usize, usize, f64)>,
+}
+
+impl XyPolynomial {
+    /// Checks a spec and builds the surface.
+    pub fn new(spec: &XyPolynomialSpec) -> Result<Self, FieldError> {
+        let base = Asphere::new(&spec.base).map_err(|e| e.within("base"))?;
+        let norm = positive("norm_radius_mm", spec.norm_radius_mm)?;
+        let mut terms = Vec::with_capacity(spec.terms.len());
+        for (n, t) in spec.terms.iter().enumerate() {
+            let field = format!("terms[{n}]");
+            if t.x + t.y > MAX_DEGREE {
+                return Err(FieldError::new(
+                    format!("{field}.x + y"),
+                    t.x + t.y,
+                    format!("total degree must be ≤ {MAX_DEGREE}"),
+                ));
+            }
+            if spec.terms[..n].iter().any(|u| u.x == t.x && u.y == t.y) {
+                return Err(FieldError::new(
+                    field,
+                    format!("x{} y{}", t.x, t.y),
+                    "each term at most once",
+                ));
+            }
+            let c = finite(&format!("{field}.coefficient_mm"), t.coefficient_mm)?;
+            terms.push((t.x as usize, t.y as usize, c));
+        }
+        Ok(Self { base, norm, terms })
+    }
+
+    fn degree(&self) -> usize {
+        self.terms.iter().map(|&(i, j, _)| i + j).max().unwrap_or(0)
+    }
+}
+
+/// `[tⁿ, n·tⁿ⁻¹, n(n−1)·tⁿ⁻²]` for n = 0…10.
+fn power_table(t: f64) -> [[f64; 3]; 11] {
+    let mut p = [[0.0; 3]; 11];
+    let mut pow = [1.0; 11];
+    for n in 1..11 {
+        pow[n] = pow[n - 1] * t;
+    }
+    for (n, row) in p.iter_mut().enumerate() {
+        let nf = n as f64;
+        row[0] = pow[n];
+        row[1] = if n >= 1 { nf * pow[n - 1] } else { 0.0 };
+        row[2] = if n >= 2 {
+            nf * (nf - 1.0) * pow[n - 2]
+        } else {
+            0.0
+        };
+    }
+    p
+}
+
+impl Surface for XyPolynomial {
+    fn local(&self, x: f64, y: f64) -> Result<Local, UndefinedError> {
+        let mut l = self.base.local(x, y)?;
+        let n = self.norm;
+        let (pu, pv) = (power_table(x / n), power_table(y / n));
+        let (mut z, mut zx, mut zy, mut zxx, mut zxy, mut zyy) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        for &(i, j, c) in &self.terms {
+            z += c * pu[i][0] * pv[j][0];
+            zx += c * pu[i][1] * pv[j][0];
+            zy += c * pu[i][0] * pv[j][1];
+            zxx += c * pu[i][2] * pv[j][0];
+            zxy += c * pu[i][1] * pv[j][1];
+            zyy += c * pu[i][0] * pv[j][2];
+        }
+        l.z += z;
+        l.zx += zx / n;
+        l.zy += zy / n;
+        l.zxx += zxx / (n * n);
+        l.zxy += zxy / (n * n);
+        l.zyy += zyy / (n * n);
+        Ok(l)
+    }
+
+    fn feature_length_mm(&self) -> f64 {
+        match self.degree() {
+            0 => self.base.feature_length_mm(),
+            d => self.norm / d as f64,
+        }
+    }
+
+    fn describe(&self) -> String {
+        let terms: Vec<String> = self
+            .terms
+            .iter()
+            .map(|(i, j, c)| format!("x{i}y{j} {c:e}"))
+            .collect();
+        format!(
+            "XY polynomial N {} mm [{}] on {}",
+            self.norm,
+            terms.join(", "),
+            self.base.describe()
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spec(terms: Vec<XyTerm>) -> XyPolynomialSpec {
+        XyPolynomialSpec {
+            base: AsphereSpec {
+                radius_mm: Some(100.0),
+                ..Default::default()
+            },
+            norm_radius_mm: 5.0,
+            terms,
+        }
+    }
+
+    #[test]
+    fn terms_add_to_the_base_as_written_by_hand() {
+        let t = |x, y, c| XyTerm {
+            x,
+            y,
+            coefficient_mm: c,
+        };
+        let s = XyPolynomial::new(&spec(vec![t(2, 1, 0.003), t(0, 4, -0.001), t(10, 0, 1e-4)]))
+            .unwrap();
+        let (x, y) = (1.5, -2.5);
+        let (u, v) = (x / 5.0, y / 5.0);
+        // The sphere in its cancellation-free form s / (R + √(R² − s)).
+        let r2 = x * x + y * y;
+        let base = r2 / (100.0 + (100.0f64 * 100.0 - r2).sqrt());
+        let z = base + 0.003 * u * u * v - 0.001 * v.powi(4) + 1e-4 * u.powi(10);
+        let got = s.local(x, y).unwrap().z;
+        assert!((got - z).abs() < 1e-15, "{got} vs {z}");
+    }
+
+    #[test]
+    fn bad_terms_are_rejected_with_their_index() {
+        let t = |x, y| XyTerm {
+            x,
+            y,
+            coefficient_mm: 1.0,
+        };
+        assert_eq!(
+            XyPolynomial::new(&spec(vec![t(6, 5)])).unwrap_err().field,
+            "terms[0].x + y"
+        );
+        assert_eq!(
+            XyPolynomial::new(&spec(vec![t(1, 1), t(1, 1)]))
+                .unwrap_err()
+                .field,
+            "terms[1]"
+        );
+        let mut s = spec(vec![]);
+        s.norm_radius_mm = 0.0;
+        assert_eq!(XyPolynomial::new(&s).unwrap_err().field, "norm_radius_mm");
+    }
+}

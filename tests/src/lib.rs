@@ -1,0 +1,1 @@
+//! Integration tests of spiralcam: see `tests/tests/`.

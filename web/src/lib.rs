@@ -1,0 +1,1 @@
+//! spiralcam in the browser (placeholder while the core is built).

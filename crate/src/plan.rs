@@ -8,7 +8,7 @@ use crate::display::DisplayPath;
 use crate::field::FieldError;
 use crate::job::{Job, JobError};
 use crate::nc::{CsvWriter, Header, NcError, NcWriter};
-use crate::reach::{self, ConcaveZone};
+use crate::reach::{self, Reach};
 use crate::report::{Report, Stats};
 use crate::spiral::{Sampling, Spiral};
 use crate::surface::{Surface, UndefinedError};
@@ -242,7 +242,7 @@ impl Planner {
     }
 
     /// Zones where the nose cannot reach the surface (see [`crate::reach`]).
-    pub fn concave_zones(&self) -> Result<Vec<ConcaveZone>, UndefinedError> {
+    pub fn concave_zones(&self) -> Result<Reach, UndefinedError> {
         reach::concave_zones(
             self.surface.as_ref(),
             &self.nose,

@@ -14,8 +14,9 @@
 //! error is the closing residual `cut(u) − f(u)`. It is found on a grid around the zone and
 //! refined by nested golden-section searches (over u for the largest residual, over ρ_s for the
 //! envelope), because at a kink both functions have corners that a grid would only resolve to
-//! first order. The depth reported is the largest found at up to four angles of each zone: the
-//! sharpest, and the zone's first, middle and last.
+//! first order. The depth reported is the largest of those found at up to five angles of each
+//! zone: the sharpest, and four spread evenly over the zone's angles. Zones shallower than 0.1 nm (a radial section grazing a
+//! slope kink) are counted but not listed.
 
 use crate::compensate::NoseCompensator;
 use crate::report::Location;
@@ -27,8 +28,10 @@ use std::f64::consts::TAU;
 pub const ANGLES: usize = 360;
 /// Most samples per radial section.
 const MAX_SAMPLES: usize = 4000;
-/// Most zones reported.
+/// Most zones listed.
 pub const MAX_ZONES: usize = 500;
+/// Zones whose form error is below this are counted, not listed, mm (0.1 nm).
+pub const LISTED_DEPTH_MM: f64 = 1e-7;
 
 /// A zone the nose cannot reach.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -58,15 +61,26 @@ struct Flag {
     kink: bool,
 }
 
-/// The zones of a surface for a nose, on a part of radius `part_radius_mm`, deepest first.
+/// The zones of a surface for a nose, on a part of radius `part_radius_mm`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct Reach {
+    /// Zones with a form error of at least 0.1 nm, deepest first, at most [`MAX_ZONES`].
+    pub zones: Vec<ConcaveZone>,
+    /// Zones found whose form error is below 0.1 nm (grazing crossings of a slope kink).
+    pub shallow_zones: usize,
+    /// Zones with a form error of at least 0.1 nm left out of `zones` beyond [`MAX_ZONES`].
+    pub unlisted_zones: usize,
+}
+
+/// Finds the zones of `surface` that `nose` cannot reach on a part of radius `part_radius_mm`.
 pub fn concave_zones(
     surface: &dyn Surface,
     nose: &NoseCompensator,
     part_radius_mm: f64,
-) -> Result<Vec<ConcaveZone>, UndefinedError> {
+) -> Result<Reach, UndefinedError> {
     let r = nose.nose_radius();
     if r == 0.0 {
-        return Ok(Vec::new());
+        return Ok(Reach::default());
     }
     let wanted = (surface.feature_length_mm() / 16.0).min(r / 8.0);
     let n = ((part_radius_mm / wanted).ceil() as usize).clamp(16, MAX_SAMPLES);
@@ -83,9 +97,17 @@ pub fn concave_zones(
             part_radius_mm,
         )?);
     }
+    let found = zones.len();
+    zones.retain(|z| z.depth_um >= LISTED_DEPTH_MM * 1e3);
+    let shallow_zones = found - zones.len();
     zones.sort_by(|a, b| b.depth_um.total_cmp(&a.depth_um));
+    let unlisted_zones = zones.len().saturating_sub(MAX_ZONES);
     zones.truncate(MAX_ZONES);
-    Ok(zones)
+    Ok(Reach {
+        zones,
+        shallow_zones,
+        unlisted_zones,
+    })
 }
 
 /// Flags per angle and radial sample, row-major (angle, sample).
@@ -132,10 +154,12 @@ fn flag_grid(
     Ok(grid)
 }
 
-/// Connected groups of flagged cells (4-neighbours, θ wrapping round).
+/// Connected groups of flagged cells: neighbours along a section, and cells of neighbouring
+/// angles (θ wrapping round) no farther apart in ρ than the arc between the two angles.
 fn components(grid: &[Option<Flag>], cols: usize) -> Vec<Vec<(usize, usize)>> {
     let mut seen = vec![false; grid.len()];
     let mut out = Vec::new();
+    let arc_cells = TAU / ANGLES as f64 * (cols - 1) as f64; // cells of arc per unit j
     for start in 0..grid.len() {
         if grid[start].is_none() || seen[start] {
             continue;
@@ -146,17 +170,18 @@ fn components(grid: &[Option<Flag>], cols: usize) -> Vec<Vec<(usize, usize)>> {
         while let Some(k) = stack.pop() {
             let (i, j) = (k / cols, k % cols);
             cells.push((i, j));
-            let mut next = vec![
-                ((i + 1) % ANGLES) * cols + j,
-                ((i + ANGLES - 1) % ANGLES) * cols + j,
-            ];
-            if j > 0 {
-                next.push(k - 1);
-            }
-            if j + 1 < cols {
-                next.push(k + 1);
-            }
-            for m in next {
+            let reach = (j as f64 * arc_cells / (cols - 1) as f64).ceil() as usize + 1;
+            let across = [(i + 1) % ANGLES, (i + ANGLES - 1) % ANGLES]
+                .into_iter()
+                .flat_map(|ii| {
+                    (j.saturating_sub(reach)..(j + reach + 1).min(cols))
+                        .map(move |jj| ii * cols + jj)
+                });
+            let along = [j.checked_sub(1), (j + 1 < cols).then_some(j + 1)]
+                .into_iter()
+                .flatten()
+                .map(|jj| i * cols + jj);
+            for m in along.chain(across) {
                 if grid[m].is_some() && !seen[m] {
                     seen[m] = true;
                     stack.push(m);
@@ -196,7 +221,10 @@ fn measure(
     angles.sort_unstable();
     angles.dedup();
     let (from, to) = angular_extent(&angles);
-    let mut reps = vec![sharpest.0, from, to, angles[angles.len() / 2]];
+    let mut reps: Vec<usize> = (0..SPREAD_ANGLES)
+        .map(|q| angles[q * angles.len() / SPREAD_ANGLES])
+        .collect();
+    reps.push(sharpest.0);
     reps.sort_unstable();
     reps.dedup();
     let mut deepest = (0.0, Location::new(0.0, 0.0));
@@ -252,10 +280,13 @@ struct Envelope<'a> {
     part_radius: f64,
 }
 
-/// Iterations of golden-section search: shrinks an interval by 0.618^60 ≈ 3·10⁻¹³.
-const GOLDEN_ITERATIONS: usize = 60;
+/// Iterations of golden-section search: shrinks an interval by 0.618^40 ≈ 4·10⁻⁹ (the
+/// brackets are a few µm wide, so positions come out to 10⁻¹¹ mm).
+const GOLDEN_ITERATIONS: usize = 40;
+/// Angles spread over a zone (besides its sharpest) where the depth is computed.
+const SPREAD_ANGLES: usize = 4;
 /// Coarse residual peaks refined per section.
-const REFINED_PEAKS: usize = 3;
+const REFINED_PEAKS: usize = 2;
 
 impl<'a> Envelope<'a> {
     fn new(
@@ -437,7 +468,7 @@ mod tests {
             4.0,
         )
         .unwrap();
-        let zones = concave_zones(&groove, &nose, 4.0).unwrap();
+        let zones = concave_zones(&groove, &nose, 4.0).unwrap().zones;
         assert_eq!(zones.len(), 1, "{zones:?}");
         let z = &zones[0];
         let alpha = k.atan();

@@ -7,7 +7,7 @@
 //! the total spindle angle at the job's speed.
 
 use crate::plan::{PathPoint, Planner};
-use crate::reach::ConcaveZone;
+use crate::reach::{ConcaveZone, Reach};
 use serde::Serialize;
 use std::f64::consts::TAU;
 
@@ -114,20 +114,18 @@ pub struct Report {
     pub z_max_mm: f64,
     /// Points whose contact lies at an end of the nose arc.
     pub arc_end_contacts: u64,
-    /// Zones the nose cannot reach, deepest first.
+    /// Zones the nose cannot reach, deepest first (form error ≥ 0.1 nm, at most 500).
     pub concave_zones: Vec<ConcaveZone>,
+    /// Further zones with a form error below 0.1 nm, counted only.
+    pub shallow_concave_zones: usize,
     /// Findings an operator must read before cutting.
     pub warnings: Vec<String>,
 }
 
 impl Report {
     /// Assembles the report of a finished run.
-    pub fn new(
-        planner: &Planner,
-        stats: &Stats,
-        nc_bytes: u64,
-        concave_zones: Vec<ConcaveZone>,
-    ) -> Self {
+    pub fn new(planner: &Planner, stats: &Stats, nc_bytes: u64, reach: Reach) -> Self {
+        let concave_zones = reach.zones;
         let job = planner.job();
         let mut warnings = Vec::new();
         if let Some((rho, theta)) = stats.first_arc_end {
@@ -143,7 +141,7 @@ impl Report {
             warnings.push(format!(
                 "{} zone(s) are concave with a curvature radius below the nose radius {} mm: form error \
                  up to {:.4} um, deepest at radius {:.4} mm, angle {:.2} deg",
-                concave_zones.len(),
+                concave_zones.len() + reach.unlisted_zones,
                 job.tool.nose_radius_mm,
                 deepest.depth_um,
                 deepest.at.rho_mm,
@@ -174,6 +172,7 @@ impl Report {
             z_max_mm: stats.z_max,
             arc_end_contacts: stats.arc_end,
             concave_zones,
+            shallow_concave_zones: reach.shallow_zones,
             warnings,
         }
     }

@@ -7,48 +7,75 @@ use crate::plan::PathPoint;
 use crate::surface::{Surface, UndefinedError};
 use std::f64::consts::TAU;
 
-/// The decimated path: every `stride`-th point as (x, y, z) with z the sag at the contact point
-/// (so the line lies on the drawn surface).
+/// The decimated path as line segments (x, y, z pairs, z the sag at the contact point so the
+/// line lies on the drawn surface): only every `every`-th revolution, so that at most about
+/// [`DISPLAY_REVOLUTIONS`] are drawn (hundreds of passes 10 µm apart are denser than the
+/// pixels), and along those every `stride`-th point, so that at most about `budget` points are
+/// kept.
 #[derive(Debug, Clone, Default)]
 pub struct DisplayPath {
+    every: u64,
     stride: u64,
-    /// x, y, z triples, mm.
-    pub xyz: Vec<f32>,
+    theta0: Option<f64>,
+    last: Option<(u64, [f32; 3])>,
+    /// Segments: two x y z points each, mm.
+    pub segments: Vec<f32>,
     seen: u64,
 }
 
+/// The most revolutions drawn.
+pub const DISPLAY_REVOLUTIONS: f64 = 80.0;
+
 impl DisplayPath {
-    /// A path that keeps at most about `budget` of `total` points.
-    pub fn new(total: u64, budget: u64) -> Self {
-        let stride = total.div_ceil(budget.max(1)).max(1);
+    /// A display copy of a path of `total` points over `revolutions` turns, keeping at most about
+    /// `budget` points.
+    pub fn new(total: u64, revolutions: f64, budget: u64) -> Self {
+        let every = (revolutions / DISPLAY_REVOLUTIONS).ceil().max(1.0) as u64;
+        let kept = total / every + 1;
+        let stride = kept.div_ceil(budget.max(1)).max(1);
         Self {
+            every,
             stride,
-            xyz: Vec::with_capacity(3 * (total / stride + 2) as usize),
-            seen: 0,
+            ..Default::default()
         }
     }
 
-    /// Offers one point; keeps it if it falls on the stride.
+    /// Only every this many revolutions is drawn.
+    pub fn revolution_step(&self) -> u64 {
+        self.every
+    }
+
+    /// Offers one point.
     pub fn push(&mut self, p: &PathPoint) {
-        if self.seen.is_multiple_of(self.stride) || p.rho == 0.0 {
-            let (s, c) = p.theta.sin_cos();
-            self.xyz.extend_from_slice(&[
-                (p.rho * c) as f32,
-                (p.rho * s) as f32,
-                p.contact[2] as f32,
-            ]);
-        }
+        let theta0 = *self.theta0.get_or_insert(p.theta);
+        // The epsilon keeps a point at a whole turn in its own revolution despite rounding.
+        let rev = ((p.theta - theta0).abs() / TAU + 1e-9) as u64;
+        let on_stride = self.seen.is_multiple_of(self.stride) || p.rho == 0.0;
         self.seen += 1;
+        if !rev.is_multiple_of(self.every) && p.rho != 0.0 {
+            self.last = None;
+            return;
+        }
+        if !on_stride {
+            return;
+        }
+        let (s, c) = p.theta.sin_cos();
+        let xyz = [(p.rho * c) as f32, (p.rho * s) as f32, p.contact[2] as f32];
+        if let Some((_, prev)) = self.last {
+            self.segments.extend_from_slice(&prev);
+            self.segments.extend_from_slice(&xyz);
+        }
+        self.last = Some((rev, xyz));
     }
 
-    /// Points kept.
+    /// Segments kept.
     pub fn len(&self) -> usize {
-        self.xyz.len() / 3
+        self.segments.len() / 6
     }
 
-    /// No point kept.
+    /// No segment kept.
     pub fn is_empty(&self) -> bool {
-        self.xyz.is_empty()
+        self.segments.is_empty()
     }
 }
 
@@ -69,6 +96,15 @@ pub struct SurfaceMesh {
 }
 
 impl SurfaceMesh {
+    /// Samples `surface` out to `radius` mm at about eight vertices per feature length
+    /// ([`Surface::feature_length_mm`]), between 64 × 128 and 400 × 1024 vertices.
+    pub fn for_surface(surface: &dyn Surface, radius: f64) -> Result<Self, UndefinedError> {
+        let spacing = surface.feature_length_mm() / 8.0;
+        let rings = (radius / spacing).ceil().clamp(64.0, 400.0) as u32;
+        let spokes = (TAU * radius / spacing).ceil().clamp(128.0, 1024.0) as u32;
+        Self::new(surface, radius, rings, spokes)
+    }
+
     /// Samples `surface` out to `radius` mm.
     pub fn new(
         surface: &dyn Surface,
@@ -142,14 +178,17 @@ mod tests {
     }
 
     #[test]
-    fn decimation_keeps_the_budget_and_the_centre() {
-        let mut d = DisplayPath::new(1000, 100);
-        for i in 0..1000u64 {
-            let rho = if i == 999 { 0.0 } else { 1.0 };
+    fn decimation_keeps_every_kth_revolution_within_budget() {
+        // 400 revolutions of 100 points: every 5th revolution, every point of those.
+        let mut d = DisplayPath::new(40_001, 400.0, 1_000_000);
+        assert_eq!(d.revolution_step(), 5);
+        for i in 0..=40_000u64 {
+            let theta = TAU * i as f64 / 100.0;
+            let rho = 4.0 * (1.0 - i as f64 / 40_000.0);
             let p = PathPoint {
                 index: i,
                 rho,
-                theta: 0.0,
+                theta,
                 z: 0.0,
                 contact: [0.0; 3],
                 contact_angle: 0.0,
@@ -157,6 +196,30 @@ mod tests {
             };
             d.push(&p);
         }
-        assert_eq!(d.len(), 101);
+        // 80 kept revolutions of 100 points give 99 segments each; the centre point (revolution
+        // 400) has no kept neighbour, since revolution 399 is not kept.
+        assert_eq!(d.len(), 80 * 99);
+        // Every segment joins points 1/100 of a turn apart.
+        for seg in d.segments.chunks(6) {
+            let a = (seg[1] as f64).atan2(seg[0] as f64);
+            let b = (seg[4] as f64).atan2(seg[3] as f64);
+            let step = (b - a).rem_euclid(TAU);
+            assert!((step - TAU / 100.0).abs() < 1e-5, "{step}");
+        }
+        let mut thin = DisplayPath::new(40_001, 400.0, 1_000);
+        assert_eq!(thin.revolution_step(), 5);
+        for i in 0..=40_000u64 {
+            let p = PathPoint {
+                index: i,
+                rho: 1.0,
+                theta: TAU * i as f64 / 100.0,
+                z: 0.0,
+                contact: [0.0; 3],
+                contact_angle: 0.0,
+                at_arc_end: false,
+            };
+            thin.push(&p);
+        }
+        assert!(thin.len() <= 1_000, "{}", thin.len());
     }
 }

@@ -98,7 +98,23 @@ pub enum JobError {
 impl Job {
     /// Parses a job document (checks syntax and field names, not values).
     pub fn from_json(text: &str) -> Result<Self, JobError> {
-        serde_json::from_str(text).map_err(|e| JobError::Syntax(e.to_string()))
+        Self::deserialize_from(&mut serde_json::Deserializer::from_str(text))
+    }
+
+    /// Reads a job from any serde deserializer (JSON text here, a JavaScript object on the
+    /// page); errors name the path of the offending field, e.g.
+    /// `job: strategy.sampling.points_per_rev: invalid type: …`.
+    pub fn deserialize_from<'de, D: serde::Deserializer<'de>>(de: D) -> Result<Self, JobError>
+    where
+        D::Error: std::fmt::Display,
+    {
+        serde_path_to_error::deserialize(de).map_err(|e| {
+            let path = e.path().to_string();
+            match path.as_str() {
+                "." | "" => JobError::Syntax(e.inner().to_string()),
+                _ => JobError::Syntax(format!("{path}: {}", e.inner())),
+            }
+        })
     }
 
     /// The page's default job: paper 004's lens array.
@@ -178,6 +194,17 @@ mod tests {
         let text = DEFAULT_JOB.replacen("\"spindle_rpm\"", "\"spindle_rmp\"", 1);
         let e = Job::from_json(&text).unwrap_err().to_string();
         assert!(e.contains("spindle_rmp"), "{e}");
+    }
+
+    #[test]
+    fn type_errors_name_the_path() {
+        let text = DEFAULT_JOB.replacen("\"points_per_rev\": 720", "\"points_per_rev\": -3", 1);
+        let e = Job::from_json(&text).unwrap_err().to_string();
+        // Internally tagged enums buffer their content, so the path ends at the enum.
+        assert!(
+            e.starts_with("job: strategy.sampling: invalid value: integer `-3`, expected u32"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -1,1 +1,13 @@
-//! spiralcam in the browser (placeholder while the core is built).
+//! spiralcam in the browser: the wasm-bindgen API the page's worker calls to plan a job
+//! (`api`), and the wgpu renderer that draws the surface and the path on the page's canvas
+//! (`viewer`, WebGPU first, WebGL2 as the fallback) with its orbit [`camera`]. [`colormap`] is
+//! the one height colour scale shared by the shader and the page's legend. `api` and `viewer`
+//! exist only in the wasm32 build.
+
+pub mod camera;
+pub mod colormap;
+
+#[cfg(target_arch = "wasm32")]
+pub mod api;
+#[cfg(target_arch = "wasm32")]
+pub mod viewer;

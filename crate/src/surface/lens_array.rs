@@ -194,17 +194,22 @@ impl Surface for LensArray {
 
     fn describe(&self) -> String {
         let s = &self.spec;
+        let form = match s.form {
+            Form::Convex => "convex",
+            Form::Concave => "concave",
+        };
+        let grid = match s.grid {
+            Grid::Rectangular => "rectangular",
+            Grid::Hexagonal => "hexagonal",
+        };
         format!(
-            "lens array: {} {:?} lenslets, R {} mm, aperture {} mm, pitch {} mm, {:?} grid, lenslet sag {:.4} µm",
+            "lens array: {} {form} lenslets, R {} mm, aperture {} mm, pitch {} mm, {grid} grid, lenslet sag {:.4} µm",
             self.lenslet_count(),
-            s.form,
             s.lens_radius_mm,
             s.aperture_mm,
             s.pitch_mm,
-            s.grid,
             self.lenslet_sag_mm() * 1e3
         )
-        .to_lowercase()
     }
 }
 

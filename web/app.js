@@ -1,0 +1,343 @@
+// The page: the job form, planning in a Web Worker (progress, cancel), the 3-D view, the report
+// and the downloads. Planning never runs on this thread, so the page stays responsive; a new
+// edit or Cancel terminates the worker and starts a fresh one. The page's state is mirrored on
+// `document.body.dataset.state` ("loading", "planning", "done", "error", "cancelled") and
+// `window.spiralcam` (plans started and finished, the report, the backend) for the browser tests.
+
+import init, { Viewer, default_job, colormap_css, version } from '../pkg/spiralcam_web.js';
+import { JobForm } from './form.js';
+
+const $ = (id) => document.getElementById(id);
+const status = (window.spiralcam = { state: 'loading', backend: null, report: null, started: 0, plans: 0, error: null });
+
+function setState(s) {
+  status.state = s;
+  document.body.dataset.state = s;
+}
+
+/** Runs planner calls in a module worker; one call at a time, cancellable. */
+class PlannerWorker {
+  constructor(onProgress) {
+    this.onProgress = onProgress;
+    this.pending = null;
+    this.nextId = 1;
+    this.start();
+  }
+
+  start() {
+    this.worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+    this.worker.onmessage = (e) => this.message(e.data);
+    this.worker.onerror = (e) => this.fail(new Error(`worker: ${e.message}`));
+  }
+
+  message(m) {
+    if (!this.pending || m.id !== this.pending.id) return;
+    if (m.kind === 'progress') {
+      this.onProgress(this.pending.kind, m.done, m.total);
+      return;
+    }
+    const { resolve, reject } = this.pending;
+    this.pending = null;
+    if (m.kind === 'error') reject(new Error(m.message));
+    else resolve(m);
+  }
+
+  fail(err) {
+    if (!this.pending) return;
+    const { reject } = this.pending;
+    this.pending = null;
+    reject(err);
+  }
+
+  /** `kind`: "plan", "nc" or "csv". */
+  run(kind, job) {
+    this.cancel();
+    const id = this.nextId++;
+    return new Promise((resolve, reject) => {
+      this.pending = { id, kind, resolve, reject };
+      this.worker.postMessage({ id, kind, job });
+    });
+  }
+
+  /** Stops the call in flight, if any. */
+  cancel() {
+    if (!this.pending) return;
+    const { reject } = this.pending;
+    this.pending = null;
+    this.worker.terminate();
+    this.start();
+    const err = new Error('cancelled');
+    err.cancelled = true;
+    reject(err);
+  }
+}
+
+const fmt = (v, digits = 3) => (Number.isFinite(v) ? v.toLocaleString('en-US', { maximumFractionDigits: digits }) : '–');
+
+function duration(s) {
+  const m = Math.floor(s / 60);
+  const h = Math.floor(m / 60);
+  const sec = (s - 60 * m).toFixed(1).padStart(4, '0');
+  return h ? `${h} h ${String(m % 60).padStart(2, '0')} min` : `${m} min ${sec} s`;
+}
+
+function bytes(n) {
+  return n >= 1e6 ? `${fmt(n / 1e6, 2)} MB` : `${fmt(n / 1e3, 1)} kB`;
+}
+
+/** The report panel. */
+function showReport(report, job) {
+  const zVelocity = report.max_dz_dtheta_um_per_deg * 360 * job.machine.spindle_rpm / 60 / 1000;
+  const rows = [
+    ['Surface', report.surface],
+    ['Points', fmt(report.points, 0)],
+    ['Revolutions', fmt(report.revolutions, 2)],
+    ['Start radius', `${fmt(report.start_radius_mm, 6)} mm`],
+    ['Cycle time', `${duration(report.cycle_time_s)} at ${fmt(job.machine.spindle_rpm)} rpm`],
+    ['NC program', `${bytes(report.nc_bytes)} (${report.dialect})`],
+    ['Surface PV', `${fmt(report.surface_pv_um, 4)} µm`],
+    ['Commanded Z', `${fmt(report.z_min_mm * 1000, 4)} … ${fmt(report.z_max_mm * 1000, 4)} µm`],
+    ['Max |dZ/dC|', `${fmt(report.max_dz_dtheta_um_per_deg, 4)} µm/° (Z speed ${fmt(zVelocity, 3)} mm/s) at ρ ${fmt(report.max_dz_dtheta_at.rho_mm, 3)} mm, θ ${fmt(report.max_dz_dtheta_at.theta_deg, 1)}°`],
+    ['Arc-end contacts', fmt(report.arc_end_contacts, 0)],
+    ['Unreachable zones', `${report.concave_zones.length}${report.shallow_concave_zones ? ` (+${report.shallow_concave_zones} below 0.1 nm)` : ''}`],
+  ];
+  const table = $('report-table');
+  table.replaceChildren(...rows.map(([k, v]) => {
+    const tr = document.createElement('tr');
+    const th = document.createElement('th');
+    th.textContent = k;
+    const td = document.createElement('td');
+    td.textContent = v;
+    td.dataset.key = k;
+    tr.append(th, td);
+    return tr;
+  }));
+  const warnings = $('warnings');
+  warnings.replaceChildren(...report.warnings.map((w) => Object.assign(document.createElement('li'), { textContent: w })));
+  const zones = $('zones');
+  zones.hidden = report.concave_zones.length === 0;
+  const body = zones.querySelector('tbody');
+  body.replaceChildren(...report.concave_zones.slice(0, 20).map((z) => {
+    const tr = document.createElement('tr');
+    const cells = [
+      `${fmt(z.rho_min_mm, 3)} … ${fmt(z.rho_max_mm, 3)}`,
+      `${fmt(z.theta_from_deg, 0)}° … ${fmt(z.theta_to_deg, 0)}°`,
+      z.slope_kink ? 'kink' : fmt(z.min_curvature_radius_mm, 4),
+      fmt(z.depth_um, 4),
+      `ρ ${fmt(z.at.rho_mm, 4)}, θ ${fmt(z.at.theta_deg, 1)}°`,
+    ];
+    tr.append(...cells.map((c) => Object.assign(document.createElement('td'), { textContent: c })));
+    return tr;
+  }));
+}
+
+/** The colour legend beside the view. */
+function showLegend(zMin, zMax, exaggeration) {
+  const ticks = $('legend-ticks');
+  const n = 5;
+  ticks.replaceChildren(...Array.from({ length: n }, (_, i) => {
+    const z = zMax - ((zMax - zMin) * i) / (n - 1);
+    return Object.assign(document.createElement('span'), { textContent: `${fmt(z * 1000, 3)} µm` });
+  }));
+  $('exaggeration').textContent = `Z × ${fmt(exaggeration, 1)}`;
+}
+
+function download(name, data, type) {
+  const url = URL.createObjectURL(new Blob([data], { type }));
+  const a = Object.assign(document.createElement('a'), { href: url, download: name });
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+}
+
+/** Pointer and wheel gestures on the canvas → viewer camera. */
+function bindGestures(canvas, viewer, redraw) {
+  const pointers = new Map();
+  let pinch = null;
+  canvas.addEventListener('contextmenu', (e) => e.preventDefault());
+  canvas.addEventListener('pointerdown', (e) => {
+    canvas.setPointerCapture(e.pointerId);
+    pointers.set(e.pointerId, { x: e.clientX, y: e.clientY, button: e.button, shift: e.shiftKey });
+  });
+  const end = (e) => {
+    pointers.delete(e.pointerId);
+    pinch = null;
+  };
+  canvas.addEventListener('pointerup', end);
+  canvas.addEventListener('pointercancel', end);
+  canvas.addEventListener('pointermove', (e) => {
+    const p = pointers.get(e.pointerId);
+    if (!p) return;
+    const dx = e.clientX - p.x;
+    const dy = e.clientY - p.y;
+    p.x = e.clientX;
+    p.y = e.clientY;
+    if (pointers.size === 2) {
+      const [a, b] = [...pointers.values()];
+      const d = Math.hypot(a.x - b.x, a.y - b.y);
+      if (pinch) viewer.zoom(d / pinch);
+      pinch = d;
+      viewer.pan(dx / 2, dy / 2);
+    } else if (p.button === 2 || p.button === 1 || p.shift) {
+      viewer.pan(dx, dy);
+    } else {
+      viewer.orbit(dx, dy);
+    }
+    redraw();
+  });
+  canvas.addEventListener('wheel', (e) => {
+    e.preventDefault();
+    viewer.zoom(Math.exp(-e.deltaY * 0.0015));
+    redraw();
+  }, { passive: false });
+  canvas.addEventListener('dblclick', () => {
+    viewer.reset_view();
+    redraw();
+  });
+}
+
+async function main() {
+  await init();
+  $('version').textContent = `v${version()}`;
+  $('legend-bar').style.background = colormap_css();
+
+  const canvas = $('view');
+  let viewer = null;
+  let frame = 0;
+  const redraw = () => {
+    if (!viewer || frame) return;
+    frame = requestAnimationFrame(() => {
+      frame = 0;
+      try {
+        viewer.render();
+      } catch (e) {
+        $('backend').textContent = `render error: ${e.message}`;
+      }
+    });
+  };
+  try {
+    viewer = await Viewer.create(canvas);
+    status.backend = viewer.backend();
+    $('backend').textContent = status.backend;
+    const resize = () => {
+      const r = canvas.getBoundingClientRect();
+      viewer.resize(r.width, r.height, window.devicePixelRatio || 1);
+      redraw();
+    };
+    new ResizeObserver(resize).observe(canvas);
+    resize();
+    bindGestures(canvas, viewer, redraw);
+  } catch (e) {
+    status.backend = 'none';
+    $('backend').textContent = 'no 3-D view';
+    $('view-message').textContent = `The 3-D view is not available: ${e.message}. Planning and downloads still work.`;
+  }
+
+  const progress = $('progress');
+  const progressText = $('progress-text');
+  const busy = (on) => {
+    $('busy').hidden = !on;
+    for (const b of document.querySelectorAll('[data-needs-plan]')) b.disabled = on || !status.report;
+  };
+  const worker = new PlannerWorker((kind, done, total) => {
+    progress.max = total;
+    progress.value = done;
+    const what = { plan: 'planning', nc: 'writing NC', csv: 'writing CSV' }[kind];
+    progressText.textContent = `${what}: ${Math.round((100 * done) / Math.max(total, 1))} % (${fmt(done, 0)} / ${fmt(total, 0)} points)`;
+  });
+
+  let planned = null;
+  const form = new JobForm($('job-form'), () => schedule());
+  const showFailure = (e) => {
+    status.error = e.message;
+    setState('error');
+    const placed = form.showError(e.message);
+    $('error').textContent = placed ? 'Fix the highlighted field.' : e.message;
+  };
+
+  let generation = 0;
+  const plan = async () => {
+    const mine = ++generation;
+    status.started += 1;
+    const job = form.value();
+    setState('planning');
+    status.error = null;
+    form.clearErrors();
+    $('error').textContent = '';
+    progress.removeAttribute('value');
+    progressText.textContent = 'planning…';
+    busy(true);
+    try {
+      const started = performance.now();
+      const m = await worker.run('plan', job);
+      planned = { job, names: m.names };
+      status.report = m.report;
+      status.plans += 1;
+      showReport(m.report, job);
+      $('plan-time').textContent = `planned in ${fmt((performance.now() - started) / 1000, 2)} s`;
+      if (viewer) {
+        viewer.set_surface(m.positions, m.normals, m.indices, m.zMin, m.zMax);
+        viewer.set_path(m.path);
+        showLegend(m.zMin, m.zMax, viewer.z_exaggeration());
+        redraw();
+      }
+      setState('done');
+    } catch (e) {
+      if (mine !== generation) return;
+      if (!e.cancelled) showFailure(e);
+      else setState('cancelled');
+    } finally {
+      if (mine === generation) busy(false);
+    }
+  };
+
+  let timer = 0;
+  const schedule = () => {
+    clearTimeout(timer);
+    timer = setTimeout(plan, 300);
+  };
+
+  const save = async (kind) => {
+    if (!planned) return;
+    generation++;
+    busy(true);
+    try {
+      const m = await worker.run(kind, planned.job);
+      const name = kind === 'nc' ? planned.names.nc : planned.names.csv;
+      download(name, m.bytes, kind === 'nc' ? 'text/plain' : 'text/csv');
+    } catch (e) {
+      if (!e.cancelled) showFailure(e);
+    } finally {
+      busy(false);
+    }
+  };
+
+  $('cancel').addEventListener('click', () => worker.cancel());
+  $('download-nc').addEventListener('click', () => save('nc'));
+  $('download-csv').addEventListener('click', () => save('csv'));
+  $('download-job').addEventListener('click', () => {
+    const job = form.value();
+    download(`${job.name}.json`, `${JSON.stringify(job, null, 2)}\n`, 'application/json');
+  });
+  $('upload-job').addEventListener('change', async (e) => {
+    const file = e.target.files[0];
+    if (!file) return;
+    try {
+      form.show(JSON.parse(await file.text()));
+      schedule();
+    } catch (err) {
+      showFailure(new Error(`${file.name}: ${err.message}`));
+    }
+    e.target.value = '';
+  });
+
+  form.show(JSON.parse(default_job()));
+  plan();
+}
+
+main().catch((e) => {
+  status.error = String(e.message || e);
+  setState('error');
+  document.getElementById('error').textContent = `The page failed to start: ${status.error}`;
+});

@@ -1,0 +1,193 @@
+//! The JavaScript API of the planner, called from the page's Web Worker (`web/worker.js`).
+//!
+//! A job arrives as a plain JavaScript object and is read with serde-wasm-bindgen into the core's
+//! [`Job`], with the same field checks as the command line (unknown fields rejected). Results
+//! come back as flat typed arrays for the renderer and bytes for downloads. Every error becomes a
+//! JavaScript exception whose message is the core's, e.g.
+//! `tool.nose_radius_mm = -1: must be a finite number ≥ 0`; the page reads the field path before
+//! ` = ` to put the message beside that field.
+//!
+//! Planning a job for display ([`plan`]) writes the NC program into a byte counter only; the
+//! program and the CSV are produced on demand ([`nc_program`], [`csv_table`]) by planning again,
+//! which is deterministic, so memory stays flat however many points the path has.
+
+use spiralcam::display::{DisplayPath, SurfaceMesh};
+use spiralcam::job::Job;
+use spiralcam::plan::{Planner, Progress, Sinks};
+use std::ops::ControlFlow;
+use wasm_bindgen::prelude::*;
+
+/// Most path points sent to the renderer.
+pub const DISPLAY_POINTS: u64 = 200_000;
+
+/// The page's default job (paper 004's lens array) as JSON text.
+#[wasm_bindgen]
+pub fn default_job() -> String {
+    spiralcam::job::DEFAULT_JOB.to_string()
+}
+
+/// The height colour scale as a CSS gradient, for the legend.
+#[wasm_bindgen]
+pub fn colormap_css() -> String {
+    crate::colormap::css_gradient()
+}
+
+/// The crate version, shown on the page.
+#[wasm_bindgen]
+pub fn version() -> String {
+    env!("CARGO_PKG_VERSION").to_string()
+}
+
+fn read_job(job: JsValue) -> Result<Planner, JsError> {
+    let job = Job::deserialize_from(serde_wasm_bindgen::Deserializer::from(job))
+        .map_err(|e| JsError::new(&e.to_string()))?;
+    Planner::new(&job).map_err(|e| JsError::new(&e.to_string()))
+}
+
+/// Calls `progress(done, total)` in JavaScript; a thrown exception cancels the plan.
+fn reporter(progress: &js_sys::Function) -> impl FnMut(Progress) -> ControlFlow<()> + '_ {
+    move |p: Progress| {
+        let done = JsValue::from_f64(p.done as f64);
+        let total = JsValue::from_f64(p.total as f64);
+        match progress.call2(&JsValue::NULL, &done, &total) {
+            Ok(_) => ControlFlow::Continue(()),
+            Err(_) => ControlFlow::Break(()),
+        }
+    }
+}
+
+/// A planned job: the report and what the page draws.
+#[wasm_bindgen]
+pub struct Planned {
+    report: String,
+    mesh: SurfaceMesh,
+    path: Vec<f32>,
+    revolution_step: u32,
+    file_stem: String,
+    extension: String,
+}
+
+#[wasm_bindgen]
+impl Planned {
+    /// The report as JSON text (the command line's `--report`).
+    #[wasm_bindgen(getter)]
+    pub fn report(&self) -> String {
+        self.report.clone()
+    }
+
+    /// Surface mesh vertex positions, x y z per vertex, mm.
+    #[wasm_bindgen(getter)]
+    pub fn mesh_positions(&self) -> Vec<f32> {
+        self.mesh.positions.clone()
+    }
+
+    /// Surface mesh unit normals, x y z per vertex.
+    #[wasm_bindgen(getter)]
+    pub fn mesh_normals(&self) -> Vec<f32> {
+        self.mesh.normals.clone()
+    }
+
+    /// Surface mesh triangles.
+    #[wasm_bindgen(getter)]
+    pub fn mesh_indices(&self) -> Vec<u32> {
+        self.mesh.indices.clone()
+    }
+
+    /// Lowest sag on the mesh, mm.
+    #[wasm_bindgen(getter)]
+    pub fn z_min(&self) -> f64 {
+        self.mesh.z_min
+    }
+
+    /// Highest sag on the mesh, mm.
+    #[wasm_bindgen(getter)]
+    pub fn z_max(&self) -> f64 {
+        self.mesh.z_max
+    }
+
+    /// The decimated path as line segments, two x y z points each, mm, on the surface.
+    #[wasm_bindgen(getter)]
+    pub fn path(&self) -> Vec<f32> {
+        self.path.clone()
+    }
+
+    /// Only every this many revolutions is in [`Planned::path`].
+    #[wasm_bindgen(getter)]
+    pub fn revolution_step(&self) -> u32 {
+        self.revolution_step
+    }
+
+    /// File name of the NC program: the job name and the dialect's extension.
+    #[wasm_bindgen(getter)]
+    pub fn nc_file_name(&self) -> String {
+        format!("{}.{}", self.file_stem, self.extension)
+    }
+
+    /// File name of the CSV table.
+    #[wasm_bindgen(getter)]
+    pub fn csv_file_name(&self) -> String {
+        format!("{}.csv", self.file_stem)
+    }
+}
+
+/// Plans `job` for display: report, surface mesh and decimated path. `progress(done, total)` is
+/// called every 65 536 points.
+#[wasm_bindgen]
+pub fn plan(job: JsValue, progress: &js_sys::Function) -> Result<Planned, JsError> {
+    let planner = read_job(job)?;
+    let total = planner.spiral().point_count_hint();
+    let mut display = DisplayPath::new(total, planner.spiral().revolutions(), DISPLAY_POINTS);
+    let sinks = Sinks {
+        display: Some(&mut display),
+        ..Default::default()
+    };
+    let report = planner
+        .run(sinks, &mut reporter(progress))
+        .map_err(|e| JsError::new(&e.to_string()))?;
+    let mesh = SurfaceMesh::for_surface(planner.surface(), planner.job().part_radius_mm())
+        .map_err(|e| JsError::new(&e.to_string()))?;
+    Ok(Planned {
+        report: report.to_json(),
+        mesh,
+        revolution_step: display.revolution_step() as u32,
+        path: display.segments,
+        file_stem: planner.job().name.clone(),
+        extension: planner.job().output.style().extension.to_string(),
+    })
+}
+
+/// The NC program of `job`, byte for byte what `spiralcam plan JOB --nc FILE` writes.
+#[wasm_bindgen]
+pub fn nc_program(job: JsValue, progress: &js_sys::Function) -> Result<Vec<u8>, JsError> {
+    let planner = read_job(job)?;
+    let mut out = Vec::new();
+    let sinks = Sinks {
+        nc: Some(&mut out),
+        ..Default::default()
+    };
+    planner
+        .run(sinks, &mut reporter(progress))
+        .map_err(|e| JsError::new(&e.to_string()))?;
+    Ok(out)
+}
+
+/// The CSV table of `job`, byte for byte what `spiralcam plan JOB --csv FILE` writes.
+#[wasm_bindgen]
+pub fn csv_table(job: JsValue, progress: &js_sys::Function) -> Result<Vec<u8>, JsError> {
+    let planner = read_job(job)?;
+    let mut out = Vec::new();
+    let sinks = Sinks {
+        csv: Some(&mut out),
+        ..Default::default()
+    };
+    planner
+        .run(sinks, &mut reporter(progress))
+        .map_err(|e| JsError::new(&e.to_string()))?;
+    Ok(out)
+}
+
+/// Checks `job` without planning; throws the first field error.
+#[wasm_bindgen]
+pub fn check_job(job: JsValue) -> Result<(), JsError> {
+    read_job(job).map(|_| ())
+}

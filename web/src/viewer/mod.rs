@@ -1,0 +1,674 @@
+//! The 3-D view on the page's canvas, drawn with wgpu: the surface as a lit, colour-mapped
+//! triangle mesh ([`crate::colormap`], Lambert + ambient shading with a light fixed to the
+//! camera) and the tool path as a line strip on top, under an orbit camera ([`camera`]). Optical
+//! surfaces are nearly flat, so heights are exaggerated until their range is about 15 % of the
+//! part diameter. The skeleton follows wgpu's examples (`examples/features/src/framework.rs`):
+//! WebGPU when `navigator.gpu` yields an adapter, else WebGL2; the surface is created from the
+//! canvas before the adapter is requested; `downlevel_webgl2_defaults()` limits; drawing buffer
+//! = CSS size × devicePixelRatio, at least 1; reconfigure on Lost/Outdated.
+
+use std::sync::Arc;
+
+use glam::Vec3;
+use wasm_bindgen::prelude::*;
+use wgpu::util::DeviceExt;
+
+use crate::camera::OrbitCamera;
+
+/// Height range shown, as a fraction of the part diameter, once exaggerated.
+const HEIGHT_FRACTION: f32 = 0.15;
+/// How far the path is moved towards the eye, as a fraction of the scene radius.
+const PATH_LIFT: f32 = 0.004;
+/// Background, #1e1f24 (the framebuffer is not sRGB, so these are the sRGB values).
+const CLEAR: wgpu::Color = wgpu::Color {
+    r: 30.0 / 255.0,
+    g: 31.0 / 255.0,
+    b: 36.0 / 255.0,
+    a: 1.0,
+};
+/// The path's colour: a warm red, apart from every colour of the viridis scale.
+const PATH_COLOR: [f32; 4] = [1.0, 0.25, 0.3, 1.0];
+/// Depth buffer format (renderable and multisampled on WebGPU and WebGL2).
+const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Size of the `Uniforms` struct in shader.wgsl: a mat4 and five vec4 (bytes).
+const UNIFORM_SIZE: u64 = 64 + 5 * 16;
+
+/// Little-endian bytes of a float slice, the layout GPU buffers expect.
+fn f32_bytes(values: &[f32]) -> Vec<u8> {
+    values.iter().flat_map(|v| v.to_le_bytes()).collect()
+}
+
+/// Where the model sits in the world: the part centre goes to the origin and heights are
+/// multiplied by `exaggeration`; the result lies within ±`extent`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Placement {
+    centre: Vec3,
+    exaggeration: f32,
+    extent: Vec3,
+    z_min: f32,
+    inv_range: f32,
+}
+
+impl Placement {
+    /// The placement for points `xyz` whose colour scale spans `z_min..z_max`; `None` when
+    /// there is no finite point.
+    fn new(xyz: &[f32], z_min: f32, z_max: f32) -> Option<Self> {
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        for p in xyz.chunks_exact(3) {
+            let p = Vec3::new(p[0], p[1], p[2]);
+            if p.is_finite() {
+                lo = lo.min(p);
+                hi = hi.max(p);
+            }
+        }
+        if !lo.is_finite() {
+            return None;
+        }
+        let range = z_max - z_min;
+        let range_ok = range.is_finite() && range > 0.0;
+        let (z_lo, z_hi) = if range_ok {
+            (z_min, z_max)
+        } else {
+            (lo.z, hi.z)
+        };
+        let diameter = (hi.x - lo.x).max(hi.y - lo.y);
+        let height = z_hi - z_lo;
+        let exaggeration = if height > 0.0 && diameter > 0.0 {
+            (HEIGHT_FRACTION * diameter / height).max(1.0)
+        } else {
+            1.0
+        };
+        let centre = Vec3::new(
+            0.5 * (lo.x + hi.x),
+            0.5 * (lo.y + hi.y),
+            0.5 * (z_lo + z_hi),
+        );
+        let z_extent = (hi.z - centre.z).abs().max((lo.z - centre.z).abs()) * exaggeration;
+        let extent = Vec3::new(0.5 * (hi.x - lo.x), 0.5 * (hi.y - lo.y), z_extent);
+        Some(Self {
+            centre,
+            exaggeration,
+            // A single point still gets a small box to look at.
+            extent: extent.max(Vec3::splat(1e-3 * extent.max_element().max(1.0))),
+            z_min: z_lo,
+            inv_range: if height > 0.0 { 1.0 / height } else { 0.0 },
+        })
+    }
+}
+
+/// Vertex and index buffers of the surface mesh.
+struct Mesh {
+    positions: wgpu::Buffer,
+    normals: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    index_count: u32,
+}
+
+/// The drawing-buffer-sized attachments: depth and, with MSAA, the multisampled colour.
+struct Targets {
+    depth: wgpu::TextureView,
+    msaa: Option<wgpu::TextureView>,
+}
+
+/// The 3-D view of a surface and its tool path on a canvas.
+#[wasm_bindgen]
+pub struct Viewer {
+    backend: &'static str,
+    surface: wgpu::Surface<'static>,
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    config: wgpu::SurfaceConfiguration,
+    sample_count: u32,
+    targets: Targets,
+    surface_pipeline: wgpu::RenderPipeline,
+    path_pipeline: wgpu::RenderPipeline,
+    uniforms: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+    mesh: Option<Mesh>,
+    path: Option<(wgpu::Buffer, u32)>,
+    /// Placement from the surface, else from the path.
+    placement: Option<Placement>,
+    path_placement: Option<Placement>,
+    camera: OrbitCamera,
+    css_height: f32,
+    /// Whether the user moved the camera since the last reset (a resize then keeps the view).
+    moved: bool,
+}
+
+#[wasm_bindgen]
+impl Viewer {
+    /// Creates a viewer on the canvas: WebGPU if the browser offers an adapter, else WebGL2.
+    /// Errors (no backend at all) become a JS exception with a clear message.
+    pub async fn create(canvas: web_sys::HtmlCanvasElement) -> Result<Viewer, JsError> {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+        desc.backends = wgpu::Backends::BROWSER_WEBGPU | wgpu::Backends::GL;
+        let instance = wgpu::util::new_instance_with_webgpu_detection(desc).await;
+        let (width, height) = (canvas.width().max(1), canvas.height().max(1));
+        // The surface comes first: the WebGL2 adapter is made from the canvas's context.
+        let surface = instance
+            .create_surface(wgpu::SurfaceTarget::Canvas(canvas))
+            .map_err(|e| {
+                JsError::new(&format!(
+                    "3-D view unavailable: no WebGPU or WebGL2 context on the canvas \
+                     (the browser offers neither, or the canvas is in use): {e}"
+                ))
+            })?;
+        let adapter = instance
+            .request_adapter(&wgpu::RequestAdapterOptions {
+                compatible_surface: Some(&surface),
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| {
+                JsError::new(&format!(
+                    "3-D view unavailable: no WebGPU or WebGL2 adapter for the canvas ({e})"
+                ))
+            })?;
+        let backend = match adapter.get_info().backend {
+            wgpu::Backend::BrowserWebGpu => "WebGPU",
+            _ => "WebGL2",
+        };
+        let (device, queue) = adapter
+            .request_device(&wgpu::DeviceDescriptor {
+                label: Some("spiralcam viewer"),
+                required_limits: wgpu::Limits::downlevel_webgl2_defaults()
+                    .using_resolution(adapter.limits()),
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| {
+                JsError::new(&format!(
+                    "3-D view: could not open the {backend} device ({e})"
+                ))
+            })?;
+        device.on_uncaptured_error(Arc::new(|e| {
+            web_sys::console::error_1(&format!("spiralcam viewer: {e}").into());
+        }));
+
+        let mut config = surface
+            .get_default_config(&adapter, width, height)
+            .ok_or_else(|| JsError::new("3-D view: the canvas is not supported by the adapter"))?;
+        // Colours are sRGB values already (like the CSS legend): write them to a plain format.
+        let caps = surface.get_capabilities(&adapter);
+        let plain = config.format.remove_srgb_suffix();
+        if caps.formats.contains(&plain) {
+            config.format = plain;
+        }
+        surface.configure(&device, &config);
+
+        let msaa = |f| {
+            adapter
+                .get_texture_format_features(f)
+                .flags
+                .sample_count_supported(4)
+        };
+        let sample_count = if msaa(config.format) && msaa(DEPTH_FORMAT) {
+            4
+        } else {
+            1
+        };
+
+        let source = format!(
+            "{}\n{}",
+            crate::colormap::wgsl(),
+            include_str!("shader.wgsl")
+        );
+        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("viewer shader"),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("viewer uniforms"),
+            size: UNIFORM_SIZE,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("viewer uniforms"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: wgpu::BufferSize::new(UNIFORM_SIZE),
+                },
+                count: None,
+            }],
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("viewer uniforms"),
+            layout: &layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: uniforms.as_entire_binding(),
+            }],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("viewer"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipelines = PipelineSetup {
+            device: &device,
+            layout: &pipeline_layout,
+            shader: &shader,
+            format: config.format,
+            sample_count,
+        };
+        let surface_pipeline = pipelines.surface();
+        let path_pipeline = pipelines.path();
+        let targets = make_targets(&device, &config, sample_count);
+
+        let mut viewer = Viewer {
+            backend,
+            surface,
+            device,
+            queue,
+            config,
+            sample_count,
+            targets,
+            surface_pipeline,
+            path_pipeline,
+            uniforms,
+            bind_group,
+            mesh: None,
+            path: None,
+            placement: None,
+            path_placement: None,
+            camera: OrbitCamera::default(),
+            css_height: height as f32,
+            moved: false,
+        };
+        viewer.camera.aspect = width as f32 / height as f32;
+        viewer.reset_view();
+        Ok(viewer)
+    }
+
+    /// "WebGPU" or "WebGL2": the backend actually in use.
+    pub fn backend(&self) -> String {
+        self.backend.to_string()
+    }
+
+    /// The surface mesh: positions xyz (mm), unit normals xyz, triangle indices; z_min/z_max
+    /// (mm) the height range used for the colour scale (0 → bottom of the colormap, 1 → top).
+    /// Inconsistent input (lengths, indices out of range) is reported on the console and
+    /// clears the surface. A new part (other extent) resets the view.
+    pub fn set_surface(
+        &mut self,
+        positions: &[f32],
+        normals: &[f32],
+        indices: &[u32],
+        z_min: f64,
+        z_max: f64,
+    ) {
+        self.mesh = None;
+        let vertex_count = positions.len() / 3;
+        let problem = if !positions.len().is_multiple_of(3) || normals.len() != positions.len() {
+            Some(format!(
+                "{} position and {} normal values (both must be the same multiple of 3)",
+                positions.len(),
+                normals.len()
+            ))
+        } else if !indices.len().is_multiple_of(3) {
+            Some(format!(
+                "{} indices (must be a multiple of 3)",
+                indices.len()
+            ))
+        } else {
+            indices
+                .iter()
+                .find(|&&i| i as usize >= vertex_count)
+                .map(|i| format!("index {i} with only {vertex_count} vertices"))
+        };
+        if let Some(problem) = problem {
+            web_sys::console::error_1(&format!("spiralcam viewer: set_surface: {problem}").into());
+        } else if !indices.is_empty() {
+            let buffer = |label, contents: &[u8], usage| {
+                self.device
+                    .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some(label),
+                        contents,
+                        usage,
+                    })
+            };
+            let index_bytes: Vec<u8> = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
+            self.mesh = Some(Mesh {
+                positions: buffer(
+                    "surface positions",
+                    &f32_bytes(positions),
+                    wgpu::BufferUsages::VERTEX,
+                ),
+                normals: buffer(
+                    "surface normals",
+                    &f32_bytes(normals),
+                    wgpu::BufferUsages::VERTEX,
+                ),
+                indices: buffer("surface indices", &index_bytes, wgpu::BufferUsages::INDEX),
+                index_count: indices.len() as u32,
+            });
+        }
+        let placement = match self.mesh {
+            Some(_) => Placement::new(positions, z_min as f32, z_max as f32),
+            None => None,
+        };
+        self.place(placement.or(self.path_placement));
+    }
+
+    /// The tool path as line segments, two xyz points (mm) each, lying on the surface; drawn
+    /// on top in a contrasting colour.
+    pub fn set_path(&mut self, xyz: &[f32]) {
+        let count = xyz.len() / 6 * 2;
+        self.path = (count >= 2).then(|| {
+            let buffer = self
+                .device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("path"),
+                    contents: &f32_bytes(&xyz[..3 * count]),
+                    usage: wgpu::BufferUsages::VERTEX,
+                });
+            (buffer, count as u32)
+        });
+        // The path places the scene only while there is no surface.
+        self.path_placement = Placement::new(&xyz[..3 * count], f32::NAN, f32::NAN);
+        if self.mesh.is_none() {
+            self.place(self.path_placement);
+        }
+    }
+
+    /// Orbits about the part centre by a drag of `dx`, `dy` CSS pixels.
+    pub fn orbit(&mut self, dx: f32, dy: f32) {
+        self.camera.orbit(dx, dy);
+        self.moved = true;
+    }
+
+    /// Pans the view by a drag of `dx`, `dy` CSS pixels.
+    pub fn pan(&mut self, dx: f32, dy: f32) {
+        self.camera.pan(dx, dy, self.css_height);
+        self.moved = true;
+    }
+
+    /// Zooms by `factor` (> 1 zooms in).
+    pub fn zoom(&mut self, factor: f32) {
+        self.camera.zoom(factor);
+        self.moved = true;
+    }
+
+    /// Back to the default view (part seen from above at 35° elevation, fitted to the canvas).
+    pub fn reset_view(&mut self) {
+        self.camera.extent = self.placement.map_or(Vec3::ONE, |p| p.extent);
+        self.camera.reset();
+        self.moved = false;
+    }
+
+    /// New canvas size in CSS pixels and the devicePixelRatio; the drawing buffer is
+    /// size × dpr, each at least 1 (and at most the device's texture limit).
+    pub fn resize(&mut self, css_width: f32, css_height: f32, device_pixel_ratio: f32) {
+        let max = self.device.limits().max_texture_dimension_2d;
+        let dpr = if device_pixel_ratio.is_finite() && device_pixel_ratio > 0.0 {
+            device_pixel_ratio
+        } else {
+            1.0
+        };
+        // `as u32` saturates: NaN and negatives become 0, hence the clamp to ≥ 1.
+        let pixels = |css: f32| ((css * dpr).round() as u32).clamp(1, max);
+        let (width, height) = (pixels(css_width), pixels(css_height));
+        self.css_height = if css_height.is_finite() {
+            css_height.max(1.0)
+        } else {
+            1.0
+        };
+        self.camera.aspect = width as f32 / height as f32;
+        if !self.moved {
+            self.reset_view();
+        }
+        if (width, height) != (self.config.width, self.config.height) {
+            self.config.width = width;
+            self.config.height = height;
+            self.surface.configure(&self.device, &self.config);
+            self.targets = make_targets(&self.device, &self.config, self.sample_count);
+        }
+    }
+
+    /// Vertical exaggeration in use: heights are drawn this many times their true size.
+    pub fn z_exaggeration(&self) -> f32 {
+        self.placement.map_or(1.0, |p| p.exaggeration)
+    }
+
+    /// Draws one frame. Reconfigures the surface and retries on Lost/Outdated.
+    pub fn render(&mut self) -> Result<(), JsError> {
+        use wgpu::CurrentSurfaceTexture as Current;
+        let frame = match self.surface.get_current_texture() {
+            Current::Success(frame) | Current::Suboptimal(frame) => frame,
+            Current::Timeout | Current::Occluded => return Ok(()),
+            Current::Outdated | Current::Lost => {
+                self.surface.configure(&self.device, &self.config);
+                match self.surface.get_current_texture() {
+                    Current::Success(frame) | Current::Suboptimal(frame) => frame,
+                    Current::Timeout | Current::Occluded => return Ok(()),
+                    other => {
+                        return Err(JsError::new(&format!(
+                            "3-D view: no canvas texture after reconfiguring ({other:?})"
+                        )));
+                    }
+                }
+            }
+            Current::Validation => {
+                return Err(JsError::new(
+                    "3-D view: invalid canvas texture (validation error)",
+                ));
+            }
+        };
+        self.write_uniforms();
+        let view = frame
+            .texture
+            .create_view(&wgpu::TextureViewDescriptor::default());
+        let (target, resolve) = match &self.targets.msaa {
+            Some(msaa) => (msaa, Some(&view)),
+            None => (&view, None),
+        };
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("frame"),
+            });
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("scene"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: target,
+                    depth_slice: None,
+                    resolve_target: resolve,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(CLEAR),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &self.targets.depth,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Discard,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_bind_group(0, &self.bind_group, &[]);
+            if let Some(mesh) = &self.mesh {
+                pass.set_pipeline(&self.surface_pipeline);
+                pass.set_vertex_buffer(0, mesh.positions.slice(..));
+                pass.set_vertex_buffer(1, mesh.normals.slice(..));
+                pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+            }
+            if let Some((buffer, count)) = &self.path {
+                pass.set_pipeline(&self.path_pipeline);
+                pass.set_vertex_buffer(0, buffer.slice(..));
+                pass.draw(0..*count, 0..1);
+            }
+        }
+        self.queue.submit([encoder.finish()]);
+        self.queue.present(frame);
+        Ok(())
+    }
+}
+
+impl Viewer {
+    /// Adopts a new placement; a different part (centre or size) resets the view.
+    fn place(&mut self, placement: Option<Placement>) {
+        let old = self.placement;
+        self.placement = placement;
+        let same_part = match (old, placement) {
+            (Some(a), Some(b)) => {
+                let tolerance = 0.01 * a.extent.length();
+                a.extent.distance(b.extent) <= tolerance && a.centre.distance(b.centre) <= tolerance
+            }
+            (None, None) => true,
+            _ => false,
+        };
+        if !same_part || !self.moved {
+            self.reset_view();
+        }
+    }
+
+    /// Uploads the camera, light and placement for this frame.
+    fn write_uniforms(&self) {
+        let p = self.placement.unwrap_or(Placement {
+            centre: Vec3::ZERO,
+            exaggeration: 1.0,
+            extent: Vec3::ONE,
+            z_min: 0.0,
+            inv_range: 0.0,
+        });
+        let eye = self.camera.eye();
+        let (right, up) = self.camera.right_up();
+        // A light behind the viewer, a little above and to the left.
+        let light = ((eye - self.camera.target).normalize() + 0.5 * up - 0.3 * right).normalize();
+        let mut data = self.camera.view_proj().to_cols_array().to_vec();
+        data.extend_from_slice(&[eye.x, eye.y, eye.z, PATH_LIFT * p.extent.length()]);
+        data.extend_from_slice(&[light.x, light.y, light.z, 0.0]);
+        data.extend_from_slice(&[p.centre.x, p.centre.y, p.centre.z, p.exaggeration]);
+        data.extend_from_slice(&[p.z_min, p.inv_range, 0.0, 0.0]);
+        data.extend_from_slice(&PATH_COLOR);
+        self.queue
+            .write_buffer(&self.uniforms, 0, &f32_bytes(&data));
+    }
+}
+
+/// What both render pipelines share.
+struct PipelineSetup<'a> {
+    device: &'a wgpu::Device,
+    layout: &'a wgpu::PipelineLayout,
+    shader: &'a wgpu::ShaderModule,
+    format: wgpu::TextureFormat,
+    sample_count: u32,
+}
+
+impl PipelineSetup<'_> {
+    /// A pipeline drawing `topology` from `buffers` with the shader's `vs_<name>`/`fs_<name>`.
+    fn pipeline(
+        &self,
+        name: &str,
+        topology: wgpu::PrimitiveTopology,
+        buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
+    ) -> wgpu::RenderPipeline {
+        let (vs, fs) = (format!("vs_{name}"), format!("fs_{name}"));
+        self.device
+            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(name),
+                layout: Some(self.layout),
+                vertex: wgpu::VertexState {
+                    module: self.shader,
+                    entry_point: Some(&vs),
+                    compilation_options: Default::default(),
+                    buffers,
+                },
+                primitive: wgpu::PrimitiveState {
+                    topology,
+                    ..Default::default()
+                },
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: DEPTH_FORMAT,
+                    depth_write_enabled: Some(true),
+                    depth_compare: Some(wgpu::CompareFunction::LessEqual),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: wgpu::MultisampleState {
+                    count: self.sample_count,
+                    ..Default::default()
+                },
+                fragment: Some(wgpu::FragmentState {
+                    module: self.shader,
+                    entry_point: Some(&fs),
+                    compilation_options: Default::default(),
+                    targets: &[Some(self.format.into())],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+    }
+
+    /// The surface: triangles from a position and a normal buffer.
+    fn surface(&self) -> wgpu::RenderPipeline {
+        let position = wgpu::vertex_attr_array![0 => Float32x3];
+        let normal = wgpu::vertex_attr_array![1 => Float32x3];
+        let layout = |attributes| wgpu::VertexBufferLayout {
+            array_stride: 12,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes,
+        };
+        self.pipeline(
+            "surface",
+            wgpu::PrimitiveTopology::TriangleList,
+            &[Some(layout(&position)), Some(layout(&normal))],
+        )
+    }
+
+    /// The path: a line list (segments) from a position buffer.
+    fn path(&self) -> wgpu::RenderPipeline {
+        let position = wgpu::vertex_attr_array![0 => Float32x3];
+        self.pipeline(
+            "path",
+            wgpu::PrimitiveTopology::LineList,
+            &[Some(wgpu::VertexBufferLayout {
+                array_stride: 12,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &position,
+            })],
+        )
+    }
+}
+
+/// Depth (and multisampled colour) attachments the size of the drawing buffer.
+fn make_targets(
+    device: &wgpu::Device,
+    config: &wgpu::SurfaceConfiguration,
+    samples: u32,
+) -> Targets {
+    let texture = |label, format| {
+        device
+            .create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: wgpu::Extent3d {
+                    width: config.width,
+                    height: config.height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: samples,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+                view_formats: &[],
+            })
+            .create_view(&wgpu::TextureViewDescriptor::default())
+    };
+    Targets {
+        depth: texture("depth", DEPTH_FORMAT),
+        msaa: (samples > 1).then(|| texture("msaa colour", config.format)),
+    }
+}

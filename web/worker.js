@@ -1,0 +1,37 @@
+// The planning worker: loads the wasm module once and answers {id, kind, job} messages with
+// progress messages and one result ({kind: "planned" | "bytes"}) or {kind: "error", message}.
+// Typed arrays are transferred, not copied.
+
+import init, { plan, nc_program, csv_table } from '../pkg/spiralcam_web.js';
+
+const ready = init();
+
+self.onmessage = async (e) => {
+  const { id, kind, job } = e.data;
+  const progress = (done, total) => self.postMessage({ id, kind: 'progress', done, total });
+  try {
+    await ready;
+    if (kind === 'plan') {
+      const p = plan(job, progress);
+      const m = {
+        id,
+        kind: 'planned',
+        report: JSON.parse(p.report),
+        positions: p.mesh_positions,
+        normals: p.mesh_normals,
+        indices: p.mesh_indices,
+        zMin: p.z_min,
+        zMax: p.z_max,
+        path: p.path,
+        names: { nc: p.nc_file_name, csv: p.csv_file_name },
+      };
+      p.free();
+      self.postMessage(m, [m.positions.buffer, m.normals.buffer, m.indices.buffer, m.path.buffer]);
+    } else {
+      const bytes = kind === 'nc' ? nc_program(job, progress) : csv_table(job, progress);
+      self.postMessage({ id, kind: 'bytes', bytes }, [bytes.buffer]);
+    }
+  } catch (err) {
+    self.postMessage({ id, kind: 'error', message: String(err && err.message ? err.message : err) });
+  }
+};

@@ -164,7 +164,9 @@ impl NoseCompensator {
             if next.f > best.f {
                 best = next;
             }
-            if prev.g > 0.0 && next.g <= 0.0 {
+            // F′ goes from + to −, possibly through an exact 0 at a sample (flat land under
+            // the nose): a maximum lies in [prev, next].
+            if (prev.g > 0.0 && next.g <= 0.0) || (prev.g >= 0.0 && next.g < 0.0) {
                 let peak = section.refine(prev, next)?;
                 if peak.f > best.f {
                     best = peak;
@@ -222,12 +224,10 @@ impl Section<'_> {
         })
     }
 
-    /// The local maximum of F in `[lo.a, hi.a]` given `F′(lo) > 0 ≥ F′(hi)`: Newton on F′ = 0
-    /// inside the bracket, bisection where Newton would leave it or the section has a kink.
+    /// The local maximum of F in `[lo.a, hi.a]` given `F′(lo) ≥ 0 ≥ F′(hi)`, not both zero:
+    /// Newton on F′ = 0 inside the bracket, bisection where Newton would leave it or the
+    /// section has a kink.
     fn refine(&self, mut lo: Sample, mut hi: Sample) -> Result<Sample, UndefinedError> {
-        if hi.g == 0.0 {
-            return Ok(hi);
-        }
         let mut best = if lo.f > hi.f { lo } else { hi };
         let mut x = lo;
         for _ in 0..100 {

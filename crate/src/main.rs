@@ -165,8 +165,9 @@ fn plan(args: &[String]) -> Result<(), Failure> {
     let report = match result {
         Ok(r) => r,
         Err(e) => {
-            nc.map(Output::discard);
-            csv.map(Output::discard);
+            for output in [nc, csv].into_iter().flatten() {
+                output.discard();
+            }
             return Err(run_err(e));
         }
     };

@@ -128,12 +128,10 @@ impl Planner {
             st.start_angle_deg,
         )
         .map_err(|e| e.within("strategy"))?;
-        let nose = NoseCompensator::new(
-            &job.tool,
-            surface.feature_length_mm(),
-            spiral.start_radius_mm(),
-        )
-        .map_err(|e| e.within("tool"))?;
+        // The material ends at the part edge, wherever the spiral starts.
+        let nose =
+            NoseCompensator::new(&job.tool, surface.feature_length_mm(), job.part_radius_mm())
+                .map_err(|e| e.within("tool"))?;
         Ok(Self {
             job: job.clone(),
             surface,
@@ -231,7 +229,7 @@ impl Planner {
                     sign(conv.z_sign),
                     sign(conv.c_sign),
                     if conv.wrap_c {
-                        " wrapped to [0, 360)"
+                        " wrapped to 0 <= C < 360"
                     } else {
                         " cumulative"
                     }

@@ -132,7 +132,7 @@ function showReport(report, job) {
 }
 
 /** The colour legend beside the view. */
-function showLegend(zMin, zMax, exaggeration) {
+function showLegend(zMin, zMax, exaggeration, revolutionStep) {
   const ticks = $('legend-ticks');
   const n = 5;
   ticks.replaceChildren(...Array.from({ length: n }, (_, i) => {
@@ -140,6 +140,7 @@ function showLegend(zMin, zMax, exaggeration) {
     return Object.assign(document.createElement('span'), { textContent: `${fmt(z * 1000, 3)} µm` });
   }));
   $('exaggeration').textContent = `Z × ${fmt(exaggeration, 1)}`;
+  $('path-note').textContent = revolutionStep > 1 ? `path: every ${revolutionStep}th revolution shown` : 'path: every revolution shown';
 }
 
 function download(name, data, type) {
@@ -279,7 +280,7 @@ async function main() {
       if (viewer) {
         viewer.set_surface(m.positions, m.normals, m.indices, m.zMin, m.zMax);
         viewer.set_path(m.path);
-        showLegend(m.zMin, m.zMax, viewer.z_exaggeration());
+        showLegend(m.zMin, m.zMax, viewer.z_exaggeration(), m.revolutionStep);
         redraw();
       }
       setState('done');

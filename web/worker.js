@@ -23,6 +23,7 @@ self.onmessage = async (e) => {
         zMin: p.z_min,
         zMax: p.z_max,
         path: p.path,
+        revolutionStep: p.revolution_step,
         names: { nc: p.nc_file_name, csv: p.csv_file_name },
       };
       p.free();

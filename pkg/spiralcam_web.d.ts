@@ -1,0 +1,219 @@
+/* tslint:disable */
+/* eslint-disable */
+
+/**
+ * A planned job: the report and what the page draws.
+ */
+export class Planned {
+    private constructor();
+    free(): void;
+    [Symbol.dispose](): void;
+    /**
+     * File name of the CSV table.
+     */
+    readonly csv_file_name: string;
+    /**
+     * Surface mesh triangles.
+     */
+    readonly mesh_indices: Uint32Array;
+    /**
+     * Surface mesh unit normals, x y z per vertex.
+     */
+    readonly mesh_normals: Float32Array;
+    /**
+     * Surface mesh vertex positions, x y z per vertex, mm.
+     */
+    readonly mesh_positions: Float32Array;
+    /**
+     * File name of the NC program: the job name and the dialect's extension.
+     */
+    readonly nc_file_name: string;
+    /**
+     * The decimated path as line segments, two x y z points each, mm, on the surface.
+     */
+    readonly path: Float32Array;
+    /**
+     * The report as JSON text (the command line's `--report`).
+     */
+    readonly report: string;
+    /**
+     * Only every this many revolutions is in [`Planned::path`].
+     */
+    readonly revolution_step: number;
+    /**
+     * Highest sag on the mesh, mm.
+     */
+    readonly z_max: number;
+    /**
+     * Lowest sag on the mesh, mm.
+     */
+    readonly z_min: number;
+}
+
+/**
+ * The 3-D view of a surface and its tool path on a canvas.
+ */
+export class Viewer {
+    private constructor();
+    free(): void;
+    [Symbol.dispose](): void;
+    /**
+     * "WebGPU" or "WebGL2": the backend actually in use.
+     */
+    backend(): string;
+    /**
+     * Creates a viewer on the canvas: WebGPU if the browser offers an adapter, else WebGL2.
+     * Errors (no backend at all) become a JS exception with a clear message.
+     */
+    static create(canvas: HTMLCanvasElement): Promise<Viewer>;
+    /**
+     * Orbits about the part centre by a drag of `dx`, `dy` CSS pixels.
+     */
+    orbit(dx: number, dy: number): void;
+    /**
+     * Pans the view by a drag of `dx`, `dy` CSS pixels.
+     */
+    pan(dx: number, dy: number): void;
+    /**
+     * Draws one frame. Reconfigures the surface and retries on Lost/Outdated.
+     */
+    render(): void;
+    /**
+     * Back to the default view (part seen from above at 35° elevation, fitted to the canvas).
+     */
+    reset_view(): void;
+    /**
+     * New canvas size in CSS pixels and the devicePixelRatio; the drawing buffer is
+     * size × dpr, each at least 1 (and at most the device's texture limit).
+     */
+    resize(css_width: number, css_height: number, device_pixel_ratio: number): void;
+    /**
+     * The tool path as line segments, two xyz points (mm) each, lying on the surface; drawn
+     * on top in a contrasting colour.
+     */
+    set_path(xyz: Float32Array | number[]): void;
+    /**
+     * The surface mesh: positions xyz (mm), unit normals xyz, triangle indices; z_min/z_max
+     * (mm) the height range used for the colour scale (0 → bottom of the colormap, 1 → top).
+     * Inconsistent input (lengths, indices out of range) is reported on the console and
+     * clears the surface. A new part (other extent) resets the view.
+     */
+    set_surface(positions: Float32Array | number[], normals: Float32Array | number[], indices: Uint32Array | number[], z_min: number, z_max: number): void;
+    /**
+     * Vertical exaggeration in use: heights are drawn this many times their true size.
+     */
+    z_exaggeration(): number;
+    /**
+     * Zooms by `factor` (> 1 zooms in).
+     */
+    zoom(factor: number): void;
+}
+
+/**
+ * Checks `job` without planning; throws the first field error.
+ */
+export function check_job(job: any): void;
+
+/**
+ * The height colour scale as a CSS gradient, for the legend.
+ */
+export function colormap_css(): string;
+
+/**
+ * The CSV table of `job`, byte for byte what `spiralcam plan JOB --csv FILE` writes.
+ */
+export function csv_table(job: any, progress: Function): Uint8Array;
+
+/**
+ * The page's default job (paper 004's lens array) as JSON text.
+ */
+export function default_job(): string;
+
+/**
+ * The NC program of `job`, byte for byte what `spiralcam plan JOB --nc FILE` writes.
+ */
+export function nc_program(job: any, progress: Function): Uint8Array;
+
+/**
+ * Plans `job` for display: report, surface mesh and decimated path. `progress(done, total)` is
+ * called every 65 536 points.
+ */
+export function plan(job: any, progress: Function): Planned;
+
+/**
+ * The crate version, shown on the page.
+ */
+export function version(): string;
+
+export type InitInput = RequestInfo | URL | Response | BufferSource | WebAssembly.Module;
+
+export interface InitOutput {
+    readonly memory: WebAssembly.Memory;
+    readonly __wbg_planned_free: (a: number, b: number) => void;
+    readonly __wbg_viewer_free: (a: number, b: number) => void;
+    readonly check_job: (a: any) => [number, number];
+    readonly colormap_css: () => [number, number];
+    readonly csv_table: (a: any, b: any) => [number, number, number, number];
+    readonly default_job: () => [number, number];
+    readonly nc_program: (a: any, b: any) => [number, number, number, number];
+    readonly plan: (a: any, b: any) => [number, number, number];
+    readonly planned_csv_file_name: (a: number) => [number, number];
+    readonly planned_mesh_indices: (a: number) => [number, number];
+    readonly planned_mesh_normals: (a: number) => [number, number];
+    readonly planned_mesh_positions: (a: number) => [number, number];
+    readonly planned_nc_file_name: (a: number) => [number, number];
+    readonly planned_path: (a: number) => [number, number];
+    readonly planned_report: (a: number) => [number, number];
+    readonly planned_revolution_step: (a: number) => number;
+    readonly planned_z_max: (a: number) => number;
+    readonly planned_z_min: (a: number) => number;
+    readonly version: () => [number, number];
+    readonly viewer_backend: (a: number) => [number, number];
+    readonly viewer_create: (a: any) => any;
+    readonly viewer_orbit: (a: number, b: number, c: number) => void;
+    readonly viewer_pan: (a: number, b: number, c: number) => void;
+    readonly viewer_render: (a: number) => [number, number];
+    readonly viewer_reset_view: (a: number) => void;
+    readonly viewer_resize: (a: number, b: number, c: number, d: number) => void;
+    readonly viewer_set_path: (a: number, b: number, c: number) => void;
+    readonly viewer_set_surface: (a: number, b: number, c: number, d: number, e: number, f: number, g: number, h: number, i: number) => void;
+    readonly viewer_z_exaggeration: (a: number) => number;
+    readonly viewer_zoom: (a: number, b: number) => void;
+    readonly wasm_bindgen__convert__closures_____invoke__h0188c6c16f57def8: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h0188c6c16f57def8_32: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h0188c6c16f57def8_33: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h6a9a4c771fb11aad: (a: number, b: number, c: any, d: any) => void;
+    readonly wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h82239b8f0315e64c: (a: number, b: number, c: any) => void;
+    readonly __wbindgen_malloc: (a: number, b: number) => number;
+    readonly __wbindgen_realloc: (a: number, b: number, c: number, d: number) => number;
+    readonly __wbindgen_free: (a: number, b: number, c: number) => void;
+    readonly __wbindgen_exn_store: (a: number) => void;
+    readonly __externref_table_alloc: () => number;
+    readonly __wbindgen_externrefs: WebAssembly.Table;
+    readonly __wbindgen_destroy_closure: (a: number, b: number) => void;
+    readonly __externref_table_dealloc: (a: number) => void;
+    readonly __wbindgen_start: () => void;
+}
+
+export type SyncInitInput = BufferSource | WebAssembly.Module;
+
+/**
+ * Instantiates the given `module`, which can either be bytes or
+ * a precompiled `WebAssembly.Module`.
+ *
+ * @param {{ module: SyncInitInput }} module - Passing `SyncInitInput` directly is deprecated.
+ *
+ * @returns {InitOutput}
+ */
+export function initSync(module: { module: SyncInitInput } | SyncInitInput): InitOutput;
+
+/**
+ * If `module_or_path` is {RequestInfo} or {URL}, makes a request and
+ * for everything else, calls `WebAssembly.instantiate` directly.
+ *
+ * @param {{ module_or_path: InitInput | Promise<InitInput> }} module_or_path - Passing `InitInput` directly is deprecated.
+ *
+ * @returns {Promise<InitOutput>}
+ */
+export default function __wbg_init (module_or_path?: { module_or_path: InitInput | Promise<InitInput> } | InitInput | Promise<InitInput>): Promise<InitOutput>;

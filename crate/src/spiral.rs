@@ -82,6 +82,9 @@ pub struct Spiral {
 
 /// The most points per revolution.
 pub const MAX_POINTS_PER_REV: u32 = 1_000_000;
+/// The most points on a path: 10⁹, three times the largest path of paper 000 (303 million
+/// points before HCAA); more is a mistake in the feed or the sampling, not a job.
+pub const MAX_POINTS: u64 = 1_000_000_000;
 
 impl Spiral {
     /// Checks the parameters (`field` prefixes name them as in the job) and builds the spiral.
@@ -120,13 +123,24 @@ impl Spiral {
                 in_range("sampling.max_angle_step_deg", max_angle_step_deg, 0.0, 90.0)?;
             }
         }
-        Ok(Self {
+        let spiral = Self {
             outer_radius,
             feed,
             sampling: sampling.clone(),
             sign: direction.sign(),
             theta0,
-        })
+        };
+        let points = spiral.point_count_hint();
+        if points > MAX_POINTS {
+            return Err(FieldError::new(
+                "feed_mm_per_rev",
+                feed,
+                format!(
+                    "with this sampling gives about {points:.3e} points; at most {MAX_POINTS:.0e} are planned"
+                ),
+            ));
+        }
+        Ok(spiral)
     }
 
     /// The radius of the first point, mm (≥ the outer radius asked for; see the module docs).
@@ -150,7 +164,8 @@ impl Spiral {
     }
 
     fn angle_steps(&self, n: u32) -> u64 {
-        // Guard against N·R/f landing a hair above an integer through rounding.
+        // Guard against N·R/f landing a hair above an integer through rounding. The cast
+        // saturates; `new` refuses anything above MAX_POINTS.
         let exact = n as f64 * self.outer_radius / self.feed;
         (exact * (1.0 - 4.0 * f64::EPSILON)).ceil().max(1.0) as u64
     }
@@ -329,5 +344,17 @@ mod tests {
                 .field,
             "feed_mm_per_rev"
         );
+        // 10 mm at 1e-9 mm/rev and 100 points/rev: 10¹² points.
+        let s = Sampling::ConstantAngle {
+            points_per_rev: 100,
+        };
+        let e = Spiral::new(10.0, 1e-9, &s, Direction::Ccw, 0.0).unwrap_err();
+        assert_eq!(e.field, "feed_mm_per_rev");
+        assert!(e.allowed.contains("1.000e12 points"), "{e}");
+        let s = Sampling::ConstantArc {
+            arc_length_mm: 1e-9,
+            max_angle_step_deg: 1.0,
+        };
+        assert!(Spiral::new(10.0, 0.01, &s, Direction::Ccw, 0.0).is_err());
     }
 }

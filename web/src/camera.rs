@@ -20,7 +20,7 @@ const ORBIT_PER_PIXEL: f32 = 0.01;
 /// Zoom range relative to the distance at which the scene's bounding sphere fits.
 const ZOOM_RANGE: (f32, f32) = (0.02, 20.0);
 /// Fraction of the viewport the fitted scene spans at most, in each direction.
-const FILL: f32 = 0.92;
+pub const FILL: f32 = 0.92;
 
 /// An orbit camera about a target point, Z up.
 #[derive(Clone, Debug)]

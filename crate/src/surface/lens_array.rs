@@ -13,6 +13,9 @@ use super::{Local, Surface, UndefinedError};
 use crate::field::{FieldError, positive};
 use serde::{Deserialize, Serialize};
 
+/// The most lenslets on a part.
+pub const MAX_LENSLETS: f64 = 1e7;
+
 /// Lattice of the lenslet centres.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -94,6 +97,15 @@ impl LensArray {
                 "aperture_mm",
                 a,
                 format!("must not exceed twice lens_radius_mm ({} mm)", 2.0 * r),
+            ));
+        }
+        // Grid cells over the part: a guard against a pitch that is a typo.
+        let cells = (part_radius_mm / p).powi(2) * std::f64::consts::PI;
+        if cells > MAX_LENSLETS {
+            return Err(FieldError::new(
+                "pitch_mm",
+                p,
+                format!("gives about {cells:.2e} lenslets on the part; at most {MAX_LENSLETS:.0e}"),
             ));
         }
         let half_aperture = a / 2.0;
@@ -275,5 +287,14 @@ mod tests {
             ..LensArraySpec::paper004()
         };
         assert_eq!(LensArray::new(&s, 5.0).unwrap_err().field, "pitch_mm");
+        let s = LensArraySpec {
+            pitch_mm: 1e-3,
+            aperture_mm: 1e-3,
+            lens_radius_mm: 1.0,
+            ..LensArraySpec::paper004()
+        };
+        let e = LensArray::new(&s, 50.0).unwrap_err();
+        assert_eq!(e.field, "pitch_mm");
+        assert!(e.allowed.contains("lenslets on the part"), "{e}");
     }
 }

@@ -15,7 +15,11 @@
 //! step over a surface feature ([`crate::surface::Surface::feature_length_mm`]), then refining
 //! every sampled bracket where `F′(a) = r·cos a·(f′ − tan a)` changes sign from + to − with a
 //! safeguarded Newton iteration on `F′ = 0` (eq 20), which falls back to bisection at slope
-//! kinks. The NC commands the tool tip `z_c − r`. With r = 0 the tip follows the sag.
+//! kinks. Where the surface reports a slope kink under the arc ([`Surface::slope_kinks`], a
+//! lenslet's rim) samples are added just either side of it, so that F is smooth between any two
+//! samples: a kink between samples could otherwise let F rise, fall and rise again unseen. The
+//! sample grid has an odd number of intervals, so that a = 0 (where F′ = 0 over flat land) falls
+//! inside a bracket, not on a sample. The NC commands the tool tip `z_c − r`. With r = 0 the tip follows the sag.
 //!
 //! The arc is cut at the part's edge: beyond `limit_radius_mm` there is no material.
 
@@ -64,6 +68,9 @@ pub struct NoseCompensator {
     half_angle: f64,
     samples: usize,
     limit_radius: f64,
+    /// (a, sin a, cos a) of the sample grid over the whole arc, the usual case away from the
+    /// part edge: tabulated once rather than per point.
+    grid: Vec<[f64; 3]>,
 }
 
 /// Bounds on the grid of nose angles sampled before refinement.
@@ -92,16 +99,26 @@ impl NoseCompensator {
         let half_angle = (beta / 2.0).to_radians();
         let chord = 2.0 * r * half_angle.sin();
         let wanted = (chord / feature_length_mm * STEPS_PER_FEATURE).ceil();
+        // An odd number of intervals keeps a = 0 off the grid: over flat land F′(0) = 0, and a
+        // sample there would leave a bracket that only bisection can close.
         let samples = if wanted.is_finite() {
             (wanted as usize).clamp(MIN_SAMPLES, MAX_SAMPLES)
         } else {
             MIN_SAMPLES
-        };
+        } | 1;
+        let grid = (0..=samples)
+            .map(|i| {
+                let a = grid_angle(-half_angle, half_angle, samples, i);
+                let (sa, ca) = a.sin_cos();
+                [a, sa, ca]
+            })
+            .collect();
         Ok(Self {
             r,
             half_angle,
             samples,
             limit_radius: limit_radius_mm,
+            grid,
         })
     }
 
@@ -155,25 +172,26 @@ impl NoseCompensator {
         };
         let (lo, hi) = self.arc_range(rho_s);
         let n = self.samples;
-        let step = (hi - lo) / n as f64;
-        let mut prev = section.at(lo)?;
-        let mut best = prev;
+        let whole_arc = lo == -self.half_angle && hi == self.half_angle;
+        let sample = |i: usize| {
+            if whole_arc {
+                let [a, sa, ca] = self.grid[i];
+                section.at_sin_cos(a, sa, ca)
+            } else {
+                section.at(grid_angle(lo, hi, n, i))
+            }
+        };
+        let kinks = self.kink_angles(surface, rho_s, c, s, lo, hi);
+        let mut kinks = kinks.iter().peekable();
+        let mut scan = Scan::new(sample(0)?);
         for i in 1..=n {
-            let a = if i == n { hi } else { lo + step * i as f64 };
-            let next = section.at(a)?;
-            if next.f > best.f {
-                best = next;
+            let next = sample(i)?;
+            while let Some(&a) = kinks.next_if(|&&a| a < next.a) {
+                scan.visit(&section, section.at(a)?)?;
             }
-            // F′ goes from + to −, possibly through an exact 0 at a sample (flat land under
-            // the nose): a maximum lies in [prev, next].
-            if (prev.g > 0.0 && next.g <= 0.0) || (prev.g >= 0.0 && next.g < 0.0) {
-                let peak = section.refine(prev, next)?;
-                if peak.f > best.f {
-                    best = peak;
-                }
-            }
-            prev = next;
+            scan.visit(&section, next)?;
         }
+        let best = scan.best;
         let at_arc_end =
             (best.a - self.half_angle).abs() < 1e-12 || (best.a + self.half_angle).abs() < 1e-12;
         Ok(Contact {
@@ -184,6 +202,80 @@ impl NoseCompensator {
             z: best.z,
             at_arc_end: at_arc_end && best.g.abs() > 1e-12 * r,
         })
+    }
+}
+
+/// Offset, radians of nose angle, of the samples either side of a slope kink: each sees the
+/// slope of its own side.
+const KINK_OFFSET: f64 = 1e-12;
+
+impl NoseCompensator {
+    /// Nose angles just before and after each slope kink of the section under the arc
+    /// ([`Surface::slope_kinks`]), ascending.
+    fn kink_angles(
+        &self,
+        surface: &dyn Surface,
+        rho_s: f64,
+        c: f64,
+        s: f64,
+        lo: f64,
+        hi: f64,
+    ) -> Vec<f64> {
+        let r = self.r;
+        let mut kinks = Vec::new();
+        surface.slope_kinks(c, s, rho_s + r * lo.sin(), rho_s + r * hi.sin(), &mut kinks);
+        if kinks.is_empty() {
+            return kinks;
+        }
+        let mut angles: Vec<f64> = kinks
+            .iter()
+            .map(|t| ((t - rho_s) / r).clamp(-1.0, 1.0).asin())
+            .flat_map(|a| [a - KINK_OFFSET, a + KINK_OFFSET])
+            .filter(|a| *a > lo && *a < hi)
+            .collect();
+        angles.sort_by(f64::total_cmp);
+        angles
+    }
+}
+
+/// The running state of the scan along the arc: the previous sample and the best value.
+struct Scan {
+    prev: Sample,
+    best: Sample,
+}
+
+impl Scan {
+    fn new(first: Sample) -> Self {
+        Self {
+            prev: first,
+            best: first,
+        }
+    }
+
+    /// Takes the next sample; where F′ goes from + to − (possibly through an exact 0 at a
+    /// sample, as over flat land) a maximum lies between the two samples and is refined.
+    fn visit(&mut self, section: &Section, next: Sample) -> Result<(), UndefinedError> {
+        let prev = self.prev;
+        if next.f > self.best.f {
+            self.best = next;
+        }
+        if (prev.g > 0.0 && next.g <= 0.0) || (prev.g >= 0.0 && next.g < 0.0) {
+            let peak = section.refine(prev, next)?;
+            if peak.f > self.best.f {
+                self.best = peak;
+            }
+        }
+        self.prev = next;
+        Ok(())
+    }
+}
+
+/// The `i`-th of `n + 1` equally spaced angles from `lo` to `hi` (the last exactly `hi`).
+fn grid_angle(lo: f64, hi: f64, n: usize, i: usize) -> f64 {
+    if i == n {
+        hi
+    } else {
+        lo + (hi - lo) / n as f64 * i as f64
     }
 }
 
@@ -209,6 +301,11 @@ struct Sample {
 impl Section<'_> {
     fn at(&self, a: f64) -> Result<Sample, UndefinedError> {
         let (sa, ca) = a.sin_cos();
+        self.at_sin_cos(a, sa, ca)
+    }
+
+    /// As [`Section::at`] with sin a and cos a given.
+    fn at_sin_cos(&self, a: f64, sa: f64, ca: f64) -> Result<Sample, UndefinedError> {
         let r = self.r;
         let rho = self.rho_s + r * sa;
         let l = self
@@ -232,7 +329,9 @@ impl Section<'_> {
         let mut x = lo;
         for _ in 0..100 {
             let width = hi.a - lo.a;
-            if width < 1e-14 {
+            // Done when the bracket is at rounding level, or no point in it can exceed its
+            // ends by more than 1e-13 mm (F′ lies between its end values near a maximum).
+            if width < 1e-14 || width * lo.g.abs().max(hi.g.abs()) < 1e-13 {
                 break;
             }
             let newton = if x.gg < 0.0 {

@@ -1,7 +1,9 @@
 //! The planner: job → surface → spiral → one-way compensation → NC, CSV and report, as one
-//! stream. Points are produced one at a time by [`Planner::points`] and handed to every sink in
-//! turn by [`Planner::run`], so memory stays flat whatever the point count; only the display
-//! copy ([`crate::display::DisplayPath`]) keeps points, decimated to a fixed budget.
+//! stream. [`Planner::points`] yields the path one point at a time; [`Planner::run`] compensates
+//! batches of 16 384 points on all cores (natively; one thread in the browser) and hands them in
+//! order to every sink, so memory stays flat whatever the point count and the output does not
+//! depend on the number of threads; only the display copy ([`crate::display::DisplayPath`])
+//! keeps points, decimated to a fixed budget.
 
 use crate::compensate::NoseCompensator;
 use crate::display::DisplayPath;
@@ -10,14 +12,14 @@ use crate::job::{Job, JobError};
 use crate::nc::{CsvWriter, Header, NcError, NcWriter};
 use crate::reach::{self, Reach};
 use crate::report::{Report, Stats};
-use crate::spiral::{Sampling, Spiral};
+use crate::spiral::{Sampling, Spiral, SpiralPoint};
 use crate::surface::{Surface, UndefinedError};
 use std::io::Write;
 use std::ops::ControlFlow;
 use thiserror::Error;
 
 /// One point of the tool path.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct PathPoint {
     /// Position along the path, from 0.
     pub index: u64,
@@ -105,6 +107,18 @@ pub struct Sinks<'a> {
 /// How often the progress callback is called, in points.
 pub const PROGRESS_EVERY: u64 = 65_536;
 
+/// Points compensated per batch before they are written: bounds the memory of a run.
+const BATCH: usize = 16_384;
+
+/// Threads that compensate a batch: every core natively, one in the browser.
+fn workers() -> usize {
+    if cfg!(target_arch = "wasm32") {
+        1
+    } else {
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    }
+}
+
 /// A checked job, ready to plan.
 #[derive(Debug)]
 pub struct Planner {
@@ -162,18 +176,60 @@ impl Planner {
 
     /// The compensated path, streamed.
     pub fn points(&self) -> impl Iterator<Item = Result<PathPoint, UndefinedError>> + '_ {
-        self.spiral.points().enumerate().map(move |(i, sp)| {
-            let (s, c) = sp.theta.sin_cos();
-            let contact = self.nose.compensate(self.surface.as_ref(), sp.rho, c, s)?;
-            Ok(PathPoint {
-                index: i as u64,
-                rho: sp.rho,
-                theta: sp.theta,
-                z: contact.z_tip,
-                contact: [contact.rho * c, contact.rho * s, contact.z],
-                contact_angle: contact.angle,
-                at_arc_end: contact.at_arc_end,
-            })
+        self.spiral
+            .points()
+            .enumerate()
+            .map(move |(i, sp)| self.path_point(i as u64, sp))
+    }
+
+    /// The compensated path point of the `index`-th spiral point.
+    fn path_point(&self, index: u64, sp: SpiralPoint) -> Result<PathPoint, UndefinedError> {
+        let (s, c) = sp.theta.sin_cos();
+        let contact = self.nose.compensate(self.surface.as_ref(), sp.rho, c, s)?;
+        Ok(PathPoint {
+            index,
+            rho: sp.rho,
+            theta: sp.theta,
+            z: contact.z_tip,
+            contact: [contact.rho * c, contact.rho * s, contact.z],
+            contact_angle: contact.angle,
+            at_arc_end: contact.at_arc_end,
+        })
+    }
+
+    /// Compensates a batch of spiral points starting at path index `first` into `out`, in
+    /// order, split over the machine's cores (one thread on wasm32). Each point is computed
+    /// alone, so the result is the same whatever the split; the first error in path order wins.
+    fn compensate_batch(
+        &self,
+        first: u64,
+        input: &[SpiralPoint],
+        out: &mut Vec<PathPoint>,
+    ) -> Result<(), UndefinedError> {
+        out.clear();
+        out.resize(input.len(), PathPoint::default());
+        let chunk = input.len().div_ceil(workers()).max(1);
+        let fill = |k: usize,
+                    points: &[SpiralPoint],
+                    slots: &mut [PathPoint]|
+         -> Result<(), UndefinedError> {
+            for (j, (sp, slot)) in points.iter().zip(slots).enumerate() {
+                *slot = self.path_point(first + (k * chunk + j) as u64, *sp)?;
+            }
+            Ok(())
+        };
+        let mut parts = input.chunks(chunk).zip(out.chunks_mut(chunk)).enumerate();
+        if chunk == input.len() {
+            return parts.try_for_each(|(k, (p, o))| fill(k, p, o));
+        }
+        std::thread::scope(|scope| {
+            let fill = &fill;
+            let handles: Vec<_> = parts
+                .map(|(k, (p, o))| scope.spawn(move || fill(k, p, o)))
+                .collect();
+            handles
+                .into_iter()
+                .try_for_each(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
         })
     }
 
@@ -268,24 +324,33 @@ impl Planner {
         let mut display = sinks.display;
         let total = self.spiral.point_count_hint();
         let mut stats = Stats::default();
-        for p in self.points() {
-            let p = p?;
-            nc.point(&p)?;
-            if let Some(csv) = csv.as_mut() {
-                csv.point(&p)?;
+        let mut spiral = self.spiral.points();
+        let (mut input, mut output) = (Vec::with_capacity(BATCH), Vec::with_capacity(BATCH));
+        loop {
+            input.clear();
+            input.extend(spiral.by_ref().take(BATCH));
+            if input.is_empty() {
+                break;
             }
-            if let Some(d) = display.as_deref_mut() {
-                d.push(&p);
-            }
-            stats.add(&p);
-            if stats.points % PROGRESS_EVERY == 0
-                && progress(Progress {
-                    done: stats.points,
-                    total,
-                })
-                .is_break()
-            {
-                return Err(PlanError::Cancelled);
+            self.compensate_batch(stats.points, &input, &mut output)?;
+            for p in &output {
+                nc.point(p)?;
+                if let Some(csv) = csv.as_mut() {
+                    csv.point(p)?;
+                }
+                if let Some(d) = display.as_deref_mut() {
+                    d.push(p);
+                }
+                stats.add(p);
+                if stats.points % PROGRESS_EVERY == 0
+                    && progress(Progress {
+                        done: stats.points,
+                        total,
+                    })
+                    .is_break()
+                {
+                    return Err(PlanError::Cancelled);
+                }
             }
         }
         let nc_bytes = nc.finish()?;

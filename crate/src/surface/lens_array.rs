@@ -77,6 +77,8 @@ pub struct LensArray {
     sign: f64,
     /// Largest |centre| of a lenslet that is cut.
     max_centre_radius: f64,
+    /// Its square.
+    max_centre_radius2: f64,
 }
 
 impl LensArray {
@@ -109,6 +111,7 @@ impl LensArray {
             ));
         }
         let half_aperture = a / 2.0;
+        let max_centre_radius = part_radius_mm - half_aperture + 1e-9;
         let sign = match spec.form {
             Form::Concave => 1.0,
             Form::Convex => -1.0,
@@ -118,7 +121,8 @@ impl LensArray {
             half_aperture,
             rim_w: (r * r - half_aperture * half_aperture).sqrt(),
             sign,
-            max_centre_radius: part_radius_mm - half_aperture + 1e-9,
+            max_centre_radius,
+            max_centre_radius2: max_centre_radius * max_centre_radius,
         })
     }
 
@@ -131,13 +135,13 @@ impl LensArray {
     fn nearest_centre(&self, x: f64, y: f64) -> (f64, f64) {
         let p = self.spec.pitch_mm;
         match self.spec.grid {
-            Grid::Rectangular => ((x / p).round() * p, (y / p).round() * p),
+            Grid::Rectangular => (nearest(x / p) * p, nearest(y / p) * p),
             Grid::Hexagonal => {
                 let row = p * 3f64.sqrt() / 2.0;
-                let j0 = (y / row).round();
+                let j0 = nearest(y / row);
                 let mut best = (f64::INFINITY, 0.0, 0.0);
                 for j in [j0 - 1.0, j0, j0 + 1.0] {
-                    let cx = ((x / p - j / 2.0).round() + j / 2.0) * p;
+                    let cx = (nearest(x / p - j / 2.0) + j / 2.0) * p;
                     let cy = j * row;
                     let d = (x - cx).powi(2) + (y - cy).powi(2);
                     if d < best.0 {
@@ -149,27 +153,42 @@ impl LensArray {
         }
     }
 
-    /// Number of lenslets cut on the part.
-    pub fn lenslet_count(&self) -> usize {
+    /// Calls `visit` with every grid node in the box `[x0, x1] × [y0, y1]` whose lenslet is cut.
+    fn centres_in(&self, [x0, x1, y0, y1]: [f64; 4], mut visit: impl FnMut(f64, f64)) {
         let p = self.spec.pitch_mm;
-        let n = (self.max_centre_radius / p).ceil() as i64 + 2;
-        let mut count = 0;
-        for i in -n..=n {
-            for j in -n..=n {
-                let (cx, cy) = match self.spec.grid {
-                    Grid::Rectangular => (i as f64 * p, j as f64 * p),
-                    Grid::Hexagonal => (
-                        (i as f64 + j as f64 / 2.0) * p,
-                        j as f64 * p * 3f64.sqrt() / 2.0,
-                    ),
-                };
-                if cx.hypot(cy) <= self.max_centre_radius {
-                    count += 1;
+        let row = match self.spec.grid {
+            Grid::Rectangular => p,
+            Grid::Hexagonal => p * 3f64.sqrt() / 2.0,
+        };
+        for j in (y0 / row).ceil() as i64..=(y1 / row).floor() as i64 {
+            let shift = match self.spec.grid {
+                Grid::Rectangular => 0.0,
+                Grid::Hexagonal => j as f64 / 2.0,
+            };
+            for i in (x0 / p - shift).ceil() as i64..=(x1 / p - shift).floor() as i64 {
+                let (cx, cy) = ((i as f64 + shift) * p, j as f64 * row);
+                if cx * cx + cy * cy <= self.max_centre_radius2 {
+                    visit(cx, cy);
                 }
             }
         }
+    }
+
+    /// Number of lenslets cut on the part.
+    pub fn lenslet_count(&self) -> usize {
+        let r = self.max_centre_radius;
+        let mut count = 0;
+        self.centres_in([-r, r, -r, r], |_, _| count += 1);
         count
     }
+}
+
+/// The integer nearest to `x` (halves upwards) for |x| < 2⁵²: `floor(x + 0.5)` by truncation,
+/// since `f64::round` is a library call on baseline x86-64 and this lookup runs per evaluation.
+fn nearest(x: f64) -> f64 {
+    let y = x + 0.5;
+    let t = y as i64 as f64;
+    if t > y { t - 1.0 } else { t }
 }
 
 impl Surface for LensArray {
@@ -178,7 +197,7 @@ impl Surface for LensArray {
         let (dx, dy) = (x - cx, y - cy);
         let rho2 = dx * dx + dy * dy;
         let h = self.half_aperture;
-        if rho2 > h * h || cx.hypot(cy) > self.max_centre_radius {
+        if rho2 > h * h || cx * cx + cy * cy > self.max_centre_radius2 {
             return Ok(Local::default());
         }
         let r2 = self.spec.lens_radius_mm * self.spec.lens_radius_mm;
@@ -193,6 +212,27 @@ impl Surface for LensArray {
             zxy: s * dx * dy / w3,
             zyy: s * (r2 - dx * dx) / w3,
         })
+    }
+
+    /// The crossings of the line with the rims of the lenslets near it: the roots of
+    /// `|t·(c, s) − centre|² = (a/2)²`.
+    fn slope_kinks(&self, c: f64, s: f64, t0: f64, t1: f64, out: &mut Vec<f64>) {
+        let h = self.half_aperture;
+        let (xa, xb, ya, yb) = (t0 * c, t1 * c, t0 * s, t1 * s);
+        let bounds = [
+            xa.min(xb) - h,
+            xa.max(xb) + h,
+            ya.min(yb) - h,
+            ya.max(yb) + h,
+        ];
+        self.centres_in(bounds, |cx, cy| {
+            let b = c * cx + s * cy;
+            let disc = b * b - (cx * cx + cy * cy - h * h);
+            if disc > 0.0 {
+                let w = disc.sqrt();
+                out.extend([b - w, b + w].into_iter().filter(|t| *t > t0 && *t < t1));
+            }
+        });
     }
 
     fn feature_length_mm(&self) -> f64 {
@@ -246,6 +286,65 @@ mod tests {
         assert_eq!(l.lenslet_count(), brute);
         // A lenslet at (5, 0) would cross the part edge: land there.
         assert_eq!(l.local(4.9, 0.0).unwrap().z, 0.0);
+    }
+
+    #[test]
+    fn slope_kinks_are_the_rim_crossings_found_by_scanning() {
+        for grid in [Grid::Rectangular, Grid::Hexagonal] {
+            let spec = LensArraySpec {
+                grid,
+                aperture_mm: 0.8,
+                ..LensArraySpec::paper004()
+            };
+            let l = LensArray::new(&spec, 5.0).unwrap();
+            for theta in [0.0f64, 0.3, 1.1, 2.5, 4.0] {
+                let (s, c) = theta.sin_cos();
+                let (t0, t1) = (-1.3, 4.7);
+                let mut kinks = Vec::new();
+                l.slope_kinks(c, s, t0, t1, &mut kinks);
+                kinks.sort_by(f64::total_cmp);
+                // Brute force: where the point moves in or out of a lenslet (non-zero sag).
+                let inside = |t: f64| l.local(t * c, t * s).unwrap().z != 0.0;
+                let n = 600_000;
+                let step = (t1 - t0) / n as f64;
+                let mut crossings = Vec::new();
+                for k in 0..n {
+                    let (a, b) = (t0 + step * k as f64, t0 + step * (k + 1) as f64);
+                    if inside(a) != inside(b) {
+                        crossings.push((a, b));
+                    }
+                }
+                assert_eq!(kinks.len(), crossings.len(), "θ {theta}: {kinks:?}");
+                for (t, (a, b)) in kinks.iter().zip(&crossings) {
+                    assert!(
+                        *t >= a - 1e-12 && *t <= b + 1e-12,
+                        "θ {theta}: {t} not in [{a}, {b}]"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn nearest_rounds_like_round_off_the_halves() {
+        for &x in &[
+            0.0,
+            0.49,
+            0.51,
+            -0.49,
+            -0.51,
+            3.2,
+            -3.2,
+            7.7,
+            -7.7,
+            1e9 + 0.3,
+            -1e9 - 0.7,
+        ] {
+            assert_eq!(nearest(x), f64::round(x), "{x}");
+        }
+        // Halves go up (f64::round goes away from zero); both neighbours are equally near.
+        assert_eq!(nearest(-2.5), -2.0);
+        assert_eq!(nearest(2.5), 3.0);
     }
 
     #[test]

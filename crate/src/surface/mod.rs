@@ -133,6 +133,14 @@ pub trait Surface: Send + Sync + std::fmt::Debug {
     /// feature use a fraction of it.
     fn feature_length_mm(&self) -> f64;
 
+    /// Pushes onto `out` the parameters t in (t0, t1), in any order, where the slope of the
+    /// radial section `t ↦ f(t·c, t·s)` jumps (a lenslet's rim). Samplers of a section add
+    /// points either side of each, so that between samples the section is smooth. Smooth
+    /// surfaces have none, the default.
+    fn slope_kinks(&self, c: f64, s: f64, t0: f64, t1: f64, out: &mut Vec<f64>) {
+        let _ = (c, s, t0, t1, out);
+    }
+
     /// One line restating the definition, for NC headers and reports.
     fn describe(&self) -> String;
 }

@@ -159,29 +159,31 @@ pub fn plan(job: JsValue, progress: &js_sys::Function) -> Result<Planned, JsErro
 /// The NC program of `job`, byte for byte what `spiralcam plan JOB --nc FILE` writes.
 #[wasm_bindgen]
 pub fn nc_program(job: JsValue, progress: &js_sys::Function) -> Result<Vec<u8>, JsError> {
-    let planner = read_job(job)?;
-    let mut out = Vec::new();
-    let sinks = Sinks {
-        nc: Some(&mut out),
+    output_file(job, progress, |out| Sinks {
+        nc: Some(out),
         ..Default::default()
-    };
-    planner
-        .run(sinks, &mut reporter(progress))
-        .map_err(|e| JsError::new(&e.to_string()))?;
-    Ok(out)
+    })
 }
 
 /// The CSV table of `job`, byte for byte what `spiralcam plan JOB --csv FILE` writes.
 #[wasm_bindgen]
 pub fn csv_table(job: JsValue, progress: &js_sys::Function) -> Result<Vec<u8>, JsError> {
+    output_file(job, progress, |out| Sinks {
+        csv: Some(out),
+        ..Default::default()
+    })
+}
+
+/// Plans `job` into the one sink that `sinks` makes of a byte buffer, and returns the bytes.
+fn output_file(
+    job: JsValue,
+    progress: &js_sys::Function,
+    sinks: impl FnOnce(&mut Vec<u8>) -> Sinks<'_>,
+) -> Result<Vec<u8>, JsError> {
     let planner = read_job(job)?;
     let mut out = Vec::new();
-    let sinks = Sinks {
-        csv: Some(&mut out),
-        ..Default::default()
-    };
     planner
-        .run(sinks, &mut reporter(progress))
+        .run(sinks(&mut out), &mut reporter(progress))
         .map_err(|e| JsError::new(&e.to_string()))?;
     Ok(out)
 }

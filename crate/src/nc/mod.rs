@@ -237,13 +237,22 @@ impl Conventions {
     pub fn words(&self, index: u64, rho: f64, theta: f64, z: f64) -> Result<Words, NcError> {
         let bad = |what: &'static str, value: f64| NcError::Unwritable { index, what, value };
         let x = scaled(self.x_sign * rho, self.decimals_xz).ok_or(bad("X", rho))?;
-        let z = scaled(self.z_sign * z, self.decimals_xz).ok_or(bad("Z", z))?;
+        let z = self.z_units(index, z)?;
         let mut c =
             scaled(self.c_sign * theta.to_degrees(), self.decimals_c).ok_or(bad("C", theta))?;
         if self.wrap_c {
             c = c.rem_euclid(360 * 10i64.pow(self.decimals_c));
         }
         Ok(Words { c, x, z })
+    }
+
+    /// The Z word of height `z` alone (approach and retract), in units of its last digit.
+    pub fn z_units(&self, index: u64, z: f64) -> Result<i64, NcError> {
+        scaled(self.z_sign * z, self.decimals_xz).ok_or(NcError::Unwritable {
+            index,
+            what: "Z",
+            value: z,
+        })
     }
 }
 
@@ -296,7 +305,8 @@ pub struct NcWriter<W: Write> {
     clearance: f64,
     spindle_rpm: f64,
     line: Vec<u8>,
-    last: Option<(Words, f64, f64)>,
+    /// θ and z of the previous point.
+    last: Option<(f64, f64)>,
     last_f: Option<i64>,
     bytes: u64,
 }
@@ -341,7 +351,7 @@ impl<W: Write> NcWriter<W> {
         self.line.clear();
         match self.last {
             None => self.approach(w, p)?,
-            Some((_, prev_theta, _)) => {
+            Some((prev_theta, _)) => {
                 self.line
                     .extend_from_slice(self.style.block_prefix.as_bytes());
                 self.push_words(w);
@@ -364,15 +374,12 @@ impl<W: Write> NcWriter<W> {
         }
         self.out.write_all(&self.line)?;
         self.bytes += self.line.len() as u64;
-        self.last = Some((w, p.theta, p.z));
+        self.last = Some((p.theta, p.z));
         Ok(())
     }
 
     fn approach(&mut self, w: Words, p: &PathPoint) -> Result<(), NcError> {
-        let safe = self
-            .conv
-            .words(p.index, p.rho, p.theta, p.z + self.clearance)?
-            .z;
+        let safe = self.conv.z_units(p.index, p.z + self.clearance)?;
         let d = self.conv.decimals_xz;
         let l = &mut self.line;
         l.extend_from_slice(b"G0 Z");
@@ -434,8 +441,8 @@ impl<W: Write> NcWriter<W> {
         if self.feed_mode == FeedMode::InverseTime {
             self.line.extend_from_slice(b"G94\n");
         }
-        if let Some((_, theta, z)) = self.last {
-            let safe = self.conv.words(0, 0.0, theta, z + self.clearance)?.z;
+        if let Some((_, z)) = self.last {
+            let safe = self.conv.z_units(u64::MAX, z + self.clearance)?;
             self.line.extend_from_slice(b"G0 Z");
             push_scaled(&mut self.line, safe, self.conv.decimals_xz);
             self.line.push(b'\n');

@@ -24,7 +24,7 @@
 //! The arc is cut at the part's edge: beyond `limit_radius_mm` there is no material.
 
 use crate::field::{FieldError, in_range, non_negative};
-use crate::surface::{Surface, UndefinedError};
+use crate::surface::{Line, Surface, UndefinedError};
 use serde::{Deserialize, Serialize};
 
 /// The tool of a job.
@@ -223,7 +223,12 @@ impl NoseCompensator {
     ) -> Vec<f64> {
         let r = self.r;
         let mut kinks = Vec::new();
-        surface.slope_kinks(c, s, rho_s + r * lo.sin(), rho_s + r * hi.sin(), &mut kinks);
+        surface.slope_kinks(
+            Line::radial(c, s),
+            rho_s + r * lo.sin(),
+            rho_s + r * hi.sin(),
+            &mut kinks,
+        );
         if kinks.is_empty() {
             return kinks;
         }

@@ -15,8 +15,8 @@ use spiralcam::field::FieldError;
 use spiralcam::surface::lens_array::{Form, Grid};
 use spiralcam::surface::xy_polynomial::XyTerm;
 use spiralcam::surface::{
-    Asphere, AsphereSpec, LensArray, LensArraySpec, Local, Sinusoid, SinusoidSpec, Surface,
-    SurfaceSpec, XyPolynomial, XyPolynomialSpec,
+    Asphere, AsphereSpec, LensArray, LensArraySpec, Local, PartDisc, Sinusoid, SinusoidSpec,
+    Surface, SurfaceSpec, XyPolynomial, XyPolynomialSpec,
 };
 use std::f64::consts::PI;
 
@@ -425,7 +425,7 @@ impl LensModel {
     }
 
     fn build(&self) -> LensArray {
-        LensArray::new(&self.spec(), self.part_radius).expect("valid lens array")
+        LensArray::new(&self.spec(), PartDisc::centred(self.part_radius)).expect("valid lens array")
     }
 
     /// Sag from the definition: the lenslet whose disc contains the point, else land.
@@ -543,7 +543,7 @@ proptest! {
 fn paper004_preset_has_69_lenslets_of_minus_44_4_um() {
     // Table 1 of paper 004: Ø10 mm, R 2.84 mm, aperture 1 mm, pitch 1 mm, sag −44.4 µm.
     let m = LensModel::new(2.84, 1.0, 1.0, Grid::Rectangular, Form::Concave, 5.0);
-    let s = LensArray::new(&LensArraySpec::paper004(), 5.0).unwrap();
+    let s = LensArray::new(&LensArraySpec::paper004(), PartDisc::centred(5.0)).unwrap();
     assert_eq!(s.lenslet_count(), m.cut.len());
     // Lattice points with i² + j² ≤ 4.5² = 20.25: 69 of them.
     assert_eq!(m.cut.len(), 69);

@@ -9,7 +9,7 @@
 //! a ≤ p, a point can only lie in the lenslet of its nearest grid node, found in O(1).
 //! A lenslet sits on the spindle axis; grid rows run along X.
 
-use super::{Local, Surface, UndefinedError};
+use super::{Line, Local, PartDisc, Surface, UndefinedError};
 use crate::field::{FieldError, positive};
 use serde::{Deserialize, Serialize};
 
@@ -75,15 +75,19 @@ pub struct LensArray {
     rim_w: f64,
     /// +1 concave, −1 convex.
     sign: f64,
-    /// Largest |centre| of a lenslet that is cut.
+    /// The part disc: only lenslets whose centre lies within `max_centre_radius` of its
+    /// centre are cut.
+    part: PartDisc,
+    /// Part radius less half the aperture.
     max_centre_radius: f64,
     /// Its square.
     max_centre_radius2: f64,
 }
 
 impl LensArray {
-    /// Checks a spec and builds the surface for a part of radius `part_radius_mm`.
-    pub fn new(spec: &LensArraySpec, part_radius_mm: f64) -> Result<Self, FieldError> {
+    /// Checks a spec and builds the surface for the part disc `part`.
+    pub fn new(spec: &LensArraySpec, part: PartDisc) -> Result<Self, FieldError> {
+        let part_radius_mm = part.radius_mm;
         let r = positive("lens_radius_mm", spec.lens_radius_mm)?;
         let a = positive("aperture_mm", spec.aperture_mm)?;
         let p = positive("pitch_mm", spec.pitch_mm)?;
@@ -121,6 +125,7 @@ impl LensArray {
             half_aperture,
             rim_w: (r * r - half_aperture * half_aperture).sqrt(),
             sign,
+            part,
             max_centre_radius,
             max_centre_radius2: max_centre_radius * max_centre_radius,
         })
@@ -167,18 +172,24 @@ impl LensArray {
             };
             for i in (x0 / p - shift).ceil() as i64..=(x1 / p - shift).floor() as i64 {
                 let (cx, cy) = ((i as f64 + shift) * p, j as f64 * row);
-                if cx * cx + cy * cy <= self.max_centre_radius2 {
+                if self.is_cut(cx, cy) {
                     visit(cx, cy);
                 }
             }
         }
     }
 
+    /// Whether the lenslet centred at (cx, cy) lies wholly inside the part.
+    fn is_cut(&self, cx: f64, cy: f64) -> bool {
+        let (dx, dy) = (cx - self.part.x_mm, cy - self.part.y_mm);
+        dx * dx + dy * dy <= self.max_centre_radius2
+    }
+
     /// Number of lenslets cut on the part.
     pub fn lenslet_count(&self) -> usize {
-        let r = self.max_centre_radius;
+        let (r, x, y) = (self.max_centre_radius, self.part.x_mm, self.part.y_mm);
         let mut count = 0;
-        self.centres_in([-r, r, -r, r], |_, _| count += 1);
+        self.centres_in([x - r, x + r, y - r, y + r], |_, _| count += 1);
         count
     }
 }
@@ -197,7 +208,7 @@ impl Surface for LensArray {
         let (dx, dy) = (x - cx, y - cy);
         let rho2 = dx * dx + dy * dy;
         let h = self.half_aperture;
-        if rho2 > h * h || cx * cx + cy * cy > self.max_centre_radius2 {
+        if rho2 > h * h || !self.is_cut(cx, cy) {
             return Ok(Local::default());
         }
         let r2 = self.spec.lens_radius_mm * self.spec.lens_radius_mm;
@@ -215,10 +226,10 @@ impl Surface for LensArray {
     }
 
     /// The crossings of the line with the rims of the lenslets near it: the roots of
-    /// `|t·(c, s) − centre|² = (a/2)²`.
-    fn slope_kinks(&self, c: f64, s: f64, t0: f64, t1: f64, out: &mut Vec<f64>) {
+    /// `|p(t) − centre|² = (a/2)²`.
+    fn slope_kinks(&self, line: Line, t0: f64, t1: f64, out: &mut Vec<f64>) {
         let h = self.half_aperture;
-        let (xa, xb, ya, yb) = (t0 * c, t1 * c, t0 * s, t1 * s);
+        let ((xa, ya), (xb, yb)) = (line.at(t0), line.at(t1));
         let bounds = [
             xa.min(xb) - h,
             xa.max(xb) + h,
@@ -226,8 +237,9 @@ impl Surface for LensArray {
             ya.max(yb) + h,
         ];
         self.centres_in(bounds, |cx, cy| {
-            let b = c * cx + s * cy;
-            let disc = b * b - (cx * cx + cy * cy - h * h);
+            let (dx, dy) = (cx - line.x0, cy - line.y0);
+            let b = line.c * dx + line.s * dy;
+            let disc = b * b - (dx * dx + dy * dy - h * h);
             if disc > 0.0 {
                 let w = disc.sqrt();
                 out.extend([b - w, b + w].into_iter().filter(|t| *t > t0 && *t < t1));
@@ -271,7 +283,7 @@ mod tests {
 
     #[test]
     fn paper004_lenslet_sag_is_minus_44_4_um() {
-        let l = LensArray::new(&LensArraySpec::paper004(), 5.0).unwrap();
+        let l = LensArray::new(&LensArraySpec::paper004(), PartDisc::centred(5.0)).unwrap();
         // Table 1 gives −44.4 µm; the exact value is 2.84 − √(2.84² − 0.25) mm.
         assert!((l.lenslet_sag_mm() * 1e3 - -44.4).abs() < 0.05);
         assert!((l.local(0.0, 0.0).unwrap().z - l.lenslet_sag_mm()).abs() < 1e-15);
@@ -296,12 +308,12 @@ mod tests {
                 aperture_mm: 0.8,
                 ..LensArraySpec::paper004()
             };
-            let l = LensArray::new(&spec, 5.0).unwrap();
+            let l = LensArray::new(&spec, PartDisc::centred(5.0)).unwrap();
             for theta in [0.0f64, 0.3, 1.1, 2.5, 4.0] {
                 let (s, c) = theta.sin_cos();
                 let (t0, t1) = (-1.3, 4.7);
                 let mut kinks = Vec::new();
-                l.slope_kinks(c, s, t0, t1, &mut kinks);
+                l.slope_kinks(Line::radial(c, s), t0, t1, &mut kinks);
                 kinks.sort_by(f64::total_cmp);
                 // Brute force: where the point moves in or out of a lenslet (non-zero sag).
                 let inside = |t: f64| l.local(t * c, t * s).unwrap().z != 0.0;
@@ -354,7 +366,7 @@ mod tests {
             form: Form::Convex,
             ..LensArraySpec::paper004()
         };
-        let l = LensArray::new(&spec, 5.0).unwrap();
+        let l = LensArray::new(&spec, PartDisc::centred(5.0)).unwrap();
         let row = 3f64.sqrt() / 2.0;
         for &(cx, cy) in &[(0.5, row), (-1.5, -row), (1.0, 2.0 * row), (2.0, 0.0)] {
             let v = l.local(cx + 0.1, cy - 0.05).unwrap();
@@ -370,13 +382,18 @@ mod tests {
             aperture_mm: 1.5,
             ..LensArraySpec::paper004()
         };
-        assert_eq!(LensArray::new(&s, 5.0).unwrap_err().field, "aperture_mm");
+        assert_eq!(
+            LensArray::new(&s, PartDisc::centred(5.0))
+                .unwrap_err()
+                .field,
+            "aperture_mm"
+        );
         let s = LensArraySpec {
             lens_radius_mm: 0.4,
             ..LensArraySpec::paper004()
         };
         assert!(
-            LensArray::new(&s, 5.0)
+            LensArray::new(&s, PartDisc::centred(5.0))
                 .unwrap_err()
                 .allowed
                 .contains("twice lens_radius_mm")
@@ -385,14 +402,19 @@ mod tests {
             pitch_mm: -1.0,
             ..LensArraySpec::paper004()
         };
-        assert_eq!(LensArray::new(&s, 5.0).unwrap_err().field, "pitch_mm");
+        assert_eq!(
+            LensArray::new(&s, PartDisc::centred(5.0))
+                .unwrap_err()
+                .field,
+            "pitch_mm"
+        );
         let s = LensArraySpec {
             pitch_mm: 1e-3,
             aperture_mm: 1e-3,
             lens_radius_mm: 1.0,
             ..LensArraySpec::paper004()
         };
-        let e = LensArray::new(&s, 50.0).unwrap_err();
+        let e = LensArray::new(&s, PartDisc::centred(50.0)).unwrap_err();
         assert_eq!(e.field, "pitch_mm");
         assert!(e.allowed.contains("lenslets on the part"), "{e}");
     }

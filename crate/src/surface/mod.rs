@@ -14,6 +14,7 @@
 //! - [`sinusoid::Sinusoid`]: the sinusoidal grid `A·sin(2πx/λx + φx)·sin(2πy/λy + φy)`.
 
 pub mod asphere;
+pub mod composite;
 pub mod lens_array;
 pub mod sinusoid;
 pub mod xy_polynomial;
@@ -23,6 +24,7 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 pub use asphere::{Asphere, AsphereSpec};
+pub use composite::{Composite, CompositeSpec, Placed, TermSpec};
 pub use lens_array::{LensArray, LensArraySpec};
 pub use sinusoid::{Sinusoid, SinusoidSpec};
 pub use xy_polynomial::{XyPolynomial, XyPolynomialSpec};
@@ -94,6 +96,62 @@ impl std::ops::Add for Local {
     }
 }
 
+/// The part as a surface sees it: a disc of `radius_mm` centred at `(x_mm, y_mm)` in the
+/// surface's own coordinates (the origin, unless the surface is a decentred term of a
+/// [`Composite`]). Families that lay features out over the part (a lens array keeps only the
+/// lenslets inside it) use it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PartDisc {
+    /// Part radius, mm.
+    pub radius_mm: f64,
+    /// Centre, mm.
+    pub x_mm: f64,
+    /// Centre, mm.
+    pub y_mm: f64,
+}
+
+impl PartDisc {
+    /// A part of radius `radius_mm` on the surface's axis.
+    pub fn centred(radius_mm: f64) -> Self {
+        Self {
+            radius_mm,
+            x_mm: 0.0,
+            y_mm: 0.0,
+        }
+    }
+}
+
+/// A straight line in the XY plane, `p(t) = (x0, y0) + t·(c, s)` with `(c, s)` a unit vector:
+/// the trace of a radial section (through the axis) or of a decentred one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Line {
+    /// Point at t = 0, mm.
+    pub x0: f64,
+    /// Point at t = 0, mm.
+    pub y0: f64,
+    /// Unit direction, x component.
+    pub c: f64,
+    /// Unit direction, y component.
+    pub s: f64,
+}
+
+impl Line {
+    /// The radial line through the axis at angle θ with `(cos θ, sin θ) = (c, s)`.
+    pub fn radial(c: f64, s: f64) -> Self {
+        Self {
+            x0: 0.0,
+            y0: 0.0,
+            c,
+            s,
+        }
+    }
+
+    /// The point at parameter t.
+    pub fn at(&self, t: f64) -> (f64, f64) {
+        (self.x0 + t * self.c, self.y0 + t * self.s)
+    }
+}
+
 /// A point where a surface has no value.
 ///
 /// ```
@@ -134,11 +192,11 @@ pub trait Surface: Send + Sync + std::fmt::Debug {
     fn feature_length_mm(&self) -> f64;
 
     /// Pushes onto `out` the parameters t in (t0, t1), in any order, where the slope of the
-    /// radial section `t ↦ f(t·c, t·s)` jumps (a lenslet's rim). Samplers of a section add
-    /// points either side of each, so that between samples the section is smooth. Smooth
-    /// surfaces have none, the default.
-    fn slope_kinks(&self, c: f64, s: f64, t0: f64, t1: f64, out: &mut Vec<f64>) {
-        let _ = (c, s, t0, t1, out);
+    /// section `t ↦ f(line.at(t))` jumps (a lenslet's rim, the edge between two pieces of an
+    /// envelope). Samplers of a section add points either side of each, so that between
+    /// samples the section is smooth. Smooth surfaces have none, the default.
+    fn slope_kinks(&self, line: Line, t0: f64, t1: f64, out: &mut Vec<f64>) {
+        let _ = (line, t0, t1, out);
     }
 
     /// One line restating the definition, for NC headers and reports.
@@ -157,19 +215,26 @@ pub enum SurfaceSpec {
     LensArray(LensArraySpec),
     /// Product of two sines.
     Sinusoid(SinusoidSpec),
+    /// A base plus decentred and rotated terms.
+    Composite(CompositeSpec),
 }
 
 impl SurfaceSpec {
-    /// Builds the surface for a part of radius `part_radius_mm`, checking every parameter.
+    /// Builds the surface for a part of radius `part_radius_mm` on its axis, checking every
+    /// parameter.
     pub fn build(&self, part_radius_mm: f64) -> Result<Box<dyn Surface>, FieldError> {
-        let inner = |e: FieldError| e.within("surface");
+        self.build_in(PartDisc::centred(part_radius_mm))
+            .map_err(|e| e.within("surface"))
+    }
+
+    /// Builds the surface for the part disc `part`; field paths are relative to the surface.
+    pub fn build_in(&self, part: PartDisc) -> Result<Box<dyn Surface>, FieldError> {
         Ok(match self {
-            SurfaceSpec::Asphere(s) => Box::new(Asphere::new(s).map_err(inner)?),
-            SurfaceSpec::XyPolynomial(s) => Box::new(XyPolynomial::new(s).map_err(inner)?),
-            SurfaceSpec::LensArray(s) => {
-                Box::new(LensArray::new(s, part_radius_mm).map_err(inner)?)
-            }
-            SurfaceSpec::Sinusoid(s) => Box::new(Sinusoid::new(s).map_err(inner)?),
+            SurfaceSpec::Asphere(s) => Box::new(Asphere::new(s)?),
+            SurfaceSpec::XyPolynomial(s) => Box::new(XyPolynomial::new(s)?),
+            SurfaceSpec::LensArray(s) => Box::new(LensArray::new(s, part)?),
+            SurfaceSpec::Sinusoid(s) => Box::new(Sinusoid::new(s)?),
+            SurfaceSpec::Composite(s) => Box::new(Composite::new(s, part)?),
         })
     }
 }

@@ -142,6 +142,24 @@ impl Job {
             .unwrap_or_else(|| self.part_radius_mm())
     }
 
+    /// Reads the data files the job names by path (scattered points, STEP files) with `read`,
+    /// which maps a path as written in the job to its contents or a message; the command line
+    /// reads relative to the job file. Files given as text are left as they are.
+    pub fn load_files(
+        &mut self,
+        mut read: impl FnMut(&str) -> Result<String, String>,
+    ) -> Result<(), JobError> {
+        for file in self.surface.data_files_mut() {
+            if let (None, Some(path)) = (&file.text, &file.path) {
+                let text = read(path).map_err(|e| {
+                    FieldError::new("surface", path, format!("cannot be read: {e}"))
+                })?;
+                file.text = Some(text);
+            }
+        }
+        Ok(())
+    }
+
     /// Checks the values that no single module owns.
     pub fn validate(&self) -> Result<(), JobError> {
         if self.name.is_empty()

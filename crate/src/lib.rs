@@ -9,11 +9,13 @@
 //! [`plan`] runs the whole chain as a stream, so memory does not grow with the point count.
 
 pub mod compensate;
+pub mod data_file;
 pub mod display;
 pub mod field;
 pub mod job;
 pub mod nc;
 pub mod plan;
+pub mod power_map;
 pub mod reach;
 pub mod report;
 pub mod spiral;

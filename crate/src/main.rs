@@ -8,7 +8,8 @@
 //! `plan` streams the path into the files asked for (each written to `FILE.partial` and renamed
 //! when complete, so a failed run never leaves a truncated program) and prints the report as
 //! JSON on standard output unless `--report` names a file. `sag` prints sag, gradient and second
-//! derivatives of the job's surface at each `x_mm,y_mm` row of a CSV file.
+//! derivatives of the job's surface at each `x_mm,y_mm` row of a CSV file. Data files a job
+//! names by path (scattered points, STEP files) are read relative to the job file.
 
 use spiralcam::display::DisplayPath;
 use spiralcam::job::Job;
@@ -101,10 +102,16 @@ impl Args {
     }
 }
 
+/// Reads a job and the data files it names by path (relative to the job file).
 fn read_job(path: &Path) -> Result<Job, Failure> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| Failure::Run(format!("{}: {e}", path.display())))?;
-    Job::from_json(&text).map_err(|e| Failure::Run(format!("{}: {e}", path.display())))
+    let mut job =
+        Job::from_json(&text).map_err(|e| Failure::Run(format!("{}: {e}", path.display())))?;
+    let dir = path.parent().unwrap_or(Path::new("."));
+    job.load_files(|file| std::fs::read_to_string(dir.join(file)).map_err(|e| e.to_string()))
+        .map_err(|e| Failure::Run(format!("{}: {e}", path.display())))?;
+    Ok(job)
 }
 
 /// A file written under a temporary name and renamed into place on success.

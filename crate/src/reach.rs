@@ -6,7 +6,9 @@
 //! surface's feature length or an eighth of r, at most 4000 samples per section). A sample is
 //! flagged where the curvature `κ = f″/(1+f′²)^{3/2}` exceeds 1/r, and both ends of an interval
 //! are flagged where the slope rises faster than `(1+f′²)^{3/2}/r` per mm across it — a slope
-//! kink, such as the foot of a convex lenslet, or a sharp bend between samples. Flagged samples
+//! kink, such as the foot of a convex lenslet, or a sharp bend between samples; and every slope
+//! kink the surface itself reports ([`Surface::slope_kinks`]) across which the slope rises is
+//! flagged with curvature radius 0, however small its jump. Flagged samples
 //! that touch (in ρ, or in θ at the same ρ) form one zone.
 //!
 //! Depth: the cut surface is the lower envelope of the nose arcs, `cut(u) = min_ρs [z_c(ρ_s) −
@@ -20,12 +22,14 @@
 
 use crate::compensate::NoseCompensator;
 use crate::report::Location;
-use crate::surface::{Surface, UndefinedError};
+use crate::surface::{Line, Surface, UndefinedError};
 use serde::Serialize;
 use std::f64::consts::TAU;
 
 /// Angles at which radial sections are examined.
 pub const ANGLES: usize = 360;
+/// Distance either side of a reported kink where its slopes are read, relative to max(|t|, 1) mm.
+const KINK_SIDE: f64 = 1e-9;
 /// Most samples per radial section.
 const MAX_SAMPLES: usize = 4000;
 /// Most zones listed.
@@ -59,6 +63,8 @@ pub struct ConcaveZone {
 struct Flag {
     radius: f64,
     kink: bool,
+    /// ρ of a kink the surface reported: the valley bottom, exactly.
+    exact: Option<f64>,
 }
 
 /// The zones of a surface for a nose, on a part of radius `part_radius_mm`.
@@ -132,6 +138,7 @@ fn flag_grid(
                 row[j] = Some(Flag {
                     radius: 1.0 / kappa,
                     kink: false,
+                    exact: None,
                 });
             }
             slopes[j] = l.slope;
@@ -144,14 +151,45 @@ fn flag_grid(
                             row[k] = Some(Flag {
                                 radius: 1.0 / mean,
                                 kink: true,
+                                exact: None,
                             });
                         }
                     }
                 }
             }
         }
+        flag_reported_kinks(surface, (c, s), delta, row)?;
     }
     Ok(grid)
+}
+
+/// Flags the slope kinks the surface reports along the section ([`Surface::slope_kinks`]) where
+/// the slope rises across the kink: a valley the nose cannot reach, however small the jump
+/// (the sampled test above only sees jumps steeper than δ/r).
+fn flag_reported_kinks(
+    surface: &dyn Surface,
+    (c, s): (f64, f64),
+    delta: f64,
+    row: &mut [Option<Flag>],
+) -> Result<(), UndefinedError> {
+    let end = delta * (row.len() - 1) as f64;
+    let mut kinks = Vec::new();
+    surface.slope_kinks(Line::radial(c, s), 0.0, end, &mut kinks);
+    let slope = |t: f64| -> Result<f64, UndefinedError> {
+        Ok(surface.local(t * c, t * s)?.radial(c, s).slope)
+    };
+    for t in kinks {
+        let step = KINK_SIDE * t.abs().max(1.0);
+        if slope(t + step)? > slope(t - step)? {
+            let j = ((t / delta).round() as usize).min(row.len() - 1);
+            row[j] = Some(Flag {
+                radius: 0.0,
+                kink: true,
+                exact: Some(t),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// Connected groups of flagged cells: neighbours along a section, and cells of neighbouring
@@ -208,6 +246,7 @@ fn measure(
             Flag {
                 radius: f64::INFINITY,
                 kink: false,
+                exact: None,
             },
             |f| f,
         )
@@ -229,17 +268,41 @@ fn measure(
     reps.dedup();
     let mut deepest = (0.0, Location::new(0.0, 0.0));
     for i in reps {
-        let row: Vec<usize> = cells.iter().filter(|c| c.0 == i).map(|c| c.1).collect();
-        let (lo, hi) = (
-            row.iter().min().copied().unwrap_or(0),
-            row.iter().max().copied().unwrap_or(0),
-        );
         let theta = TAU * i as f64 / ANGLES as f64;
         let section = Envelope::new(surface, nose, theta, part_radius);
-        let (u, depth) =
-            section.deepest(delta * lo as f64 - delta, delta * hi as f64 + delta, delta)?;
-        if depth > deepest.0 {
-            deepest = (depth, Location::new(u, theta));
+        let row: Vec<(usize, Flag)> = cells
+            .iter()
+            .filter(|c| c.0 == i)
+            .map(|c| (c.1, flag(c)))
+            .collect();
+        let kinks: Vec<f64> = row.iter().filter_map(|(_, f)| f.exact).collect();
+        // A reported kink is the bottom of its valley: the residual peaks there exactly.
+        let mut candidates = Vec::new();
+        for &t in &kinks {
+            candidates.push((t, section.residual_at(t, delta)?));
+        }
+        // Sampled flags away from reported kinks need the general search.
+        let sampled: Vec<usize> = row
+            .iter()
+            .filter(|(j, f)| {
+                f.exact.is_none()
+                    && kinks
+                        .iter()
+                        .all(|t| (t - delta * *j as f64).abs() > 2.0 * delta)
+            })
+            .map(|(j, _)| *j)
+            .collect();
+        if let (Some(&lo), Some(&hi)) = (sampled.iter().min(), sampled.iter().max()) {
+            candidates.push(section.deepest(
+                delta * lo as f64 - delta,
+                delta * hi as f64 + delta,
+                delta,
+            )?);
+        }
+        for (u, depth) in candidates {
+            if depth > deepest.0 {
+                deepest = (depth, Location::new(u, theta));
+            }
         }
     }
     let rhos = cells.iter().map(|c| c.1 as f64 * delta);
@@ -285,6 +348,8 @@ struct Envelope<'a> {
 const GOLDEN_ITERATIONS: usize = 40;
 /// Angles spread over a zone (besides its sharpest) where the depth is computed.
 const SPREAD_ANGLES: usize = 4;
+/// Tool positions scanned across the nose width before refining the envelope at one u.
+const RESIDUAL_SCAN: usize = 32;
 /// Coarse residual peaks refined per section.
 const REFINED_PEAKS: usize = 2;
 
@@ -321,6 +386,27 @@ impl<'a> Envelope<'a> {
 
     fn sag(&self, u: f64) -> Result<f64, UndefinedError> {
         self.surface.sag(u * self.c, u * self.s)
+    }
+
+    /// The closing residual at u, mm: the nose envelope there (a coarse scan of tool positions
+    /// whose arc covers u, refined by golden-section search) less the sag.
+    fn residual_at(&self, u: f64, delta: f64) -> Result<f64, UndefinedError> {
+        let lo = (u - self.half_width).max(-self.part_radius);
+        let hi = (u + self.half_width).min(self.part_radius);
+        let step = ((hi - lo) / RESIDUAL_SCAN as f64).min(delta);
+        let count = ((hi - lo) / step).ceil() as usize;
+        let mut best = (u, f64::INFINITY);
+        for k in 0..=count {
+            let p = (lo + step * k as f64).min(hi);
+            let cut = self.arc(self.center(p)?, u - p);
+            if cut < best.1 {
+                best = (p, cut);
+            }
+        }
+        let (_, cut) = golden((best.0 - step).max(lo), (best.0 + step).min(hi), |q| {
+            Ok(-self.arc(self.center(q)?, u - q))
+        })?;
+        Ok((-cut).min(best.1) - self.sag(u)?).map(|r| r.max(0.0))
     }
 
     /// The largest closing residual for u in `[lo, hi]`: (u, residual), mm.

@@ -88,6 +88,15 @@ impl Asphere {
         })
     }
 
+    /// A sphere of vertex radius `radius_mm` (a spec with nothing else), checked as [`Self::new`]
+    /// checks it.
+    pub fn sphere(radius_mm: f64) -> Result<Self, FieldError> {
+        Self::new(&AsphereSpec {
+            radius_mm: Some(radius_mm),
+            ..Default::default()
+        })
+    }
+
     /// A plane z = 0.
     pub fn plane() -> Self {
         Self {
@@ -186,27 +195,17 @@ impl Surface for Asphere {
 mod tests {
     use super::*;
 
-    fn sphere(r: f64) -> Asphere {
-        Asphere::new(&AsphereSpec {
-            radius_mm: Some(r),
-            ..Default::default()
-        })
-        .unwrap()
-    }
-
     #[test]
     fn sphere_matches_closed_form() {
-        let s = sphere(20.0);
+        let s = Asphere::sphere(20.0).unwrap();
         for &(x, y) in &[(0.0, 0.0), (3.0, -4.0), (10.0, 12.0), (-15.0, 5.0)] {
             let r2: f64 = x * x + y * y;
             let z = 20.0 - (400.0 - r2).sqrt();
             assert!((s.local(x, y).unwrap().z - z).abs() < 1e-13, "{x} {y}");
         }
         // Negative radius: the mirror image.
-        assert!(
-            (sphere(-20.0).local(3.0, 4.0).unwrap().z + 20.0 - (400.0f64 - 25.0).sqrt()).abs()
-                < 1e-13
-        );
+        let mirror = Asphere::sphere(-20.0).unwrap().local(3.0, 4.0).unwrap().z;
+        assert!((mirror + 20.0 - (400.0f64 - 25.0).sqrt()).abs() < 1e-13);
     }
 
     #[test]
@@ -226,7 +225,7 @@ mod tests {
 
     #[test]
     fn beyond_the_rim_is_an_error_naming_the_radius() {
-        let e = sphere(5.0).local(3.0, 4.0).unwrap_err();
+        let e = Asphere::sphere(5.0).unwrap().local(3.0, 4.0).unwrap_err();
         assert_eq!(e.radius_mm, 5.0);
         assert!(e.to_string().contains("even asphere"), "{e}");
     }

@@ -46,6 +46,7 @@ pub struct Placed {
     dy: f64,
     cos: f64,
     sin: f64,
+    rotation_deg: f64,
 }
 
 impl Placed {
@@ -58,6 +59,7 @@ impl Placed {
             dy,
             cos,
             sin,
+            rotation_deg,
         }
     }
 
@@ -106,14 +108,14 @@ impl Surface for Placed {
     }
 
     fn describe(&self) -> String {
-        let moved = self.dx != 0.0 || self.dy != 0.0 || self.sin != 0.0;
+        let moved = self.dx != 0.0 || self.dy != 0.0 || self.rotation_deg != 0.0;
         if moved {
             format!(
                 "{} decentred by ({}, {}) mm, rotated {}°",
                 self.inner.describe(),
                 self.dx,
                 self.dy,
-                self.sin.atan2(self.cos).to_degrees()
+                self.rotation_deg
             )
         } else {
             self.inner.describe()
@@ -221,7 +223,7 @@ mod tests {
         let inner = sinusoid().build(5.0).unwrap();
         let (dx, dy, rot) = (0.7, -1.2, 35.0);
         let placed = Placed::new(sinusoid().build(5.0).unwrap(), dx, dy, rot);
-        let (s, c) = (rot as f64).to_radians().sin_cos();
+        let (s, c) = f64::to_radians(rot).sin_cos();
         for &(x, y) in &[(0.0, 0.0), (1.3, 2.1), (-2.0, 0.4)] {
             let (u, v) = (x - dx, y - dy);
             let (xi, yi) = (c * u + s * v, -s * u + c * v);

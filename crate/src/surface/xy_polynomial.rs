@@ -5,6 +5,7 @@
 //! the same normalised monomials; its plain "XY polynomial" uses un-normalised ones, which are
 //! these with N = 1.
 
+use super::polynomial::Bivariate;
 use super::{Asphere, AsphereSpec, Local, Surface, UndefinedError};
 use crate::field::{FieldError, finite, positive};
 use serde::{Deserialize, Serialize};
@@ -42,6 +43,7 @@ pub struct XyPolynomial {
     base: Asphere,
     norm: f64,
     terms: Vec<(usize, usize, f64)>,
+    poly: Bivariate,
 }
 
 impl XyPolynomial {
@@ -69,54 +71,24 @@ impl XyPolynomial {
             let c = finite(&format!("{field}.coefficient_mm"), t.coefficient_mm)?;
             terms.push((t.x as usize, t.y as usize, c));
         }
-        Ok(Self { base, norm, terms })
+        let poly = Bivariate::new(terms.clone());
+        Ok(Self {
+            base,
+            norm,
+            terms,
+            poly,
+        })
     }
 
     fn degree(&self) -> usize {
-        self.terms.iter().map(|&(i, j, _)| i + j).max().unwrap_or(0)
+        self.poly.degree()
     }
-}
-
-/// `[tⁿ, n·tⁿ⁻¹, n(n−1)·tⁿ⁻²]` for n = 0…10.
-fn power_table(t: f64) -> [[f64; 3]; 11] {
-    let mut p = [[0.0; 3]; 11];
-    let mut pow = [1.0; 11];
-    for n in 1..11 {
-        pow[n] = pow[n - 1] * t;
-    }
-    for (n, row) in p.iter_mut().enumerate() {
-        let nf = n as f64;
-        row[0] = pow[n];
-        row[1] = if n >= 1 { nf * pow[n - 1] } else { 0.0 };
-        row[2] = if n >= 2 {
-            nf * (nf - 1.0) * pow[n - 2]
-        } else {
-            0.0
-        };
-    }
-    p
 }
 
 impl Surface for XyPolynomial {
     fn local(&self, x: f64, y: f64) -> Result<Local, UndefinedError> {
         let mut l = self.base.local(x, y)?;
-        let n = self.norm;
-        let (pu, pv) = (power_table(x / n), power_table(y / n));
-        let (mut z, mut zx, mut zy, mut zxx, mut zxy, mut zyy) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
-        for &(i, j, c) in &self.terms {
-            z += c * pu[i][0] * pv[j][0];
-            zx += c * pu[i][1] * pv[j][0];
-            zy += c * pu[i][0] * pv[j][1];
-            zxx += c * pu[i][2] * pv[j][0];
-            zxy += c * pu[i][1] * pv[j][1];
-            zyy += c * pu[i][0] * pv[j][2];
-        }
-        l.z += z;
-        l.zx += zx / n;
-        l.zy += zy / n;
-        l.zxx += zxx / (n * n);
-        l.zxy += zxy / (n * n);
-        l.zyy += zyy / (n * n);
+        self.poly.add_to(&mut l, x, y, self.norm);
         Ok(l)
     }
 

@@ -1,0 +1,214 @@
+//! Toroid (Zemax "Toroidal" surface, without its polynomial terms): a conic profile in the YZ
+//! plane, `z_y(y) = cy·y² / (1 + √(1 − (1+ky)·cy²·y²))`, swept about an axis parallel to Y
+//! that crosses the Z axis at `z = Rx` (the radius of rotation, cx = 1/Rx).
+//!
+//! A profile point lies at distance `d·Rx` from the axis, `d = 1 − cx·z_y`; swept about the
+//! axis it traces the circle `(Rx − z)² + x² = (Rx − z_y)²`, so the sag is that of a circle of
+//! curvature `e = cx/d` in x on top of the profile:
+//! `z = z_y(y) + F(x, e(y))`, `F(x, e) = e·x² / (1 + w)`, `w = √(1 − e²x²)`,
+//! the cancellation-free form of `Rx − √((Rx − z_y)² − x²)`, and a cylinder (the profile
+//! extruded along X) when cx = 0. Derivatives: `F_x = e·x/w`, `F_xx = e/w³`,
+//! `F_e = x²/(w(1+w))`, `F_xe = x/w³`, `F_ee = e·x⁴(1+2w)/(w³(1+w)²)`, with
+//! `e′ = e²·z_y′`, `e″ = 2e³·z_y′² + e²·z_y″`, `z_y′ = cy·y/w_y`, `z_y″ = cy/w_y³`
+//! (`w_y = √(1 − (1+ky)cy²y²)`); then `∂z/∂y = z_y′ + F_e·e′`,
+//! `∂²z/∂x∂y = F_xe·e′`, `∂²z/∂y² = z_y″ + F_ee·e′² + F_e·e″`.
+//!
+//! How it differs from the [`super::Biconic`]: every XZ section of a toroid is an exact circle
+//! about the one rotation axis, so there is no kx; a biconic's XZ sections are conics whose
+//! shape changes with y under the shared square root. Both have the vertex curvatures cx, cy,
+//! but away from the axes they differ (at fourth order in x·y already for spheres). With
+//! ky = 0 the toroid is an exact torus (profile circle of radius Ry swept on a circle of radius
+//! Rx), and with Rx = Ry a sphere.
+
+use super::biconic::{describe_radius, section_curvatures};
+use super::{Local, PartDisc, Surface, UndefinedError};
+use crate::field::{FieldError, finite};
+use serde::{Deserialize, Serialize};
+
+/// Job entry of a toroid. Give exactly one of `radius_x_mm` and `curvature_x_per_mm`, and
+/// exactly one of `radius_y_mm` and `curvature_y_per_mm`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ToroidSpec {
+    /// Radius of rotation Rx, mm, finite and non-zero: the rotation axis (parallel to Y) crosses
+    /// the Z axis at z = Rx, so Rx is also the vertex radius of the XZ section. Use
+    /// `curvature_x_per_mm: 0` for a cylinder (no rotation: the profile extruded along X).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radius_x_mm: Option<f64>,
+    /// 1/Rx, 1/mm, finite; 0 for a cylinder.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curvature_x_per_mm: Option<f64>,
+    /// Vertex radius Ry of the YZ profile, mm, finite and non-zero; positive when its centre
+    /// of curvature lies on +Z.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radius_y_mm: Option<f64>,
+    /// Vertex curvature of the profile cy = 1/Ry, 1/mm, finite; 0 for a straight profile.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curvature_y_per_mm: Option<f64>,
+    /// Conic constant ky of the profile, finite; default 0.
+    #[serde(default)]
+    pub conic_y: f64,
+}
+
+/// A toroid, validated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Toroid {
+    cx: f64,
+    cy: f64,
+    ky: f64,
+    /// (1 + ky)·cy².
+    py: f64,
+}
+
+impl Toroid {
+    /// Checks a spec and builds the surface (the part disc is not needed).
+    pub fn new(spec: &ToroidSpec, _part: PartDisc) -> Result<Self, FieldError> {
+        let [cx, cy] = section_curvatures(
+            [spec.radius_x_mm, spec.radius_y_mm],
+            [spec.curvature_x_per_mm, spec.curvature_y_per_mm],
+        )?;
+        let ky = finite("conic_y", spec.conic_y)?;
+        Ok(Self {
+            cx,
+            cy,
+            ky,
+            py: (1.0 + ky) * cy * cy,
+        })
+    }
+
+    /// The profile `[z_y, z_y′, z_y″]` at y, or why it has none.
+    fn profile(&self, y: f64) -> Result<[f64; 3], String> {
+        let q = 1.0 - self.py * y * y;
+        if q.is_nan() || q <= 0.0 {
+            return Err(format!(
+                "beyond the YZ profile's rim at |y| = {} mm, where 1 − (1+ky)cy²y² ≤ 0",
+                1.0 / self.py.sqrt()
+            ));
+        }
+        let w = q.sqrt();
+        Ok([
+            self.cy * y * y / (1.0 + w),
+            self.cy * y / w,
+            self.cy / (q * w),
+        ])
+    }
+
+    fn undefined(x: f64, y: f64, reason: String) -> UndefinedError {
+        UndefinedError {
+            surface: "toroid",
+            x_mm: x,
+            y_mm: y,
+            radius_mm: x.hypot(y),
+            reason,
+        }
+    }
+}
+
+impl Surface for Toroid {
+    fn local(&self, x: f64, y: f64) -> Result<Local, UndefinedError> {
+        let [p, p1, p2] = self.profile(y).map_err(|r| Self::undefined(x, y, r))?;
+        let d = 1.0 - self.cx * p;
+        let qx = d * d - self.cx * self.cx * x * x;
+        if qx.is_nan() || qx <= 0.0 {
+            return Err(Self::undefined(
+                x,
+                y,
+                format!(
+                    "the section at this y is a circle of radius |Rx − z_y| = {} mm about the \
+                     rotation axis, and |x| reaches it",
+                    (1.0 / self.cx - p).abs()
+                ),
+            ));
+        }
+        let e = self.cx / d;
+        let w = qx.sqrt() / d.abs();
+        let (x2, w3) = (x * x, w * w * w);
+        let f = e * x2 / (1.0 + w);
+        let fe = x2 / (w * (1.0 + w));
+        let fee = e * x2 * x2 * (1.0 + 2.0 * w) / (w3 * (1.0 + w) * (1.0 + w));
+        let e1 = e * e * p1;
+        let e2 = 2.0 * e * e * e * p1 * p1 + e * e * p2;
+        Ok(Local {
+            z: p + f,
+            zx: e * x / w,
+            zy: p1 + fe * e1,
+            zxx: e / w3,
+            zxy: x / w3 * e1,
+            zyy: p2 + fee * e1 * e1 + fe * e2,
+        })
+    }
+
+    fn feature_length_mm(&self) -> f64 {
+        f64::INFINITY
+    }
+
+    fn describe(&self) -> String {
+        let rotation = if self.cx == 0.0 {
+            "none (cylinder)".to_string()
+        } else {
+            format!("{} mm", 1.0 / self.cx)
+        };
+        format!(
+            "toroid: YZ profile {}, ky {}, swept about an axis parallel to Y at radius {}",
+            describe_radius(self.cy),
+            self.ky,
+            rotation
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn toroid(spec: ToroidSpec) -> Result<Toroid, FieldError> {
+        Toroid::new(&spec, PartDisc::centred(5.0))
+    }
+
+    #[test]
+    fn sections_through_the_vertex_are_the_two_circles() {
+        // Rx 20, Ry 10: on the X axis z = 20 − √(400 − x²), on the Y axis z = 10 − √(100 − y²).
+        let s = toroid(ToroidSpec {
+            radius_x_mm: Some(20.0),
+            radius_y_mm: Some(10.0),
+            ..Default::default()
+        })
+        .unwrap();
+        assert!((s.local(12.0, 0.0).unwrap().z - 4.0).abs() < 1e-14);
+        assert!((s.local(0.0, 6.0).unwrap().z - 2.0).abs() < 1e-14);
+        // At y = 6 the profile is 2 mm up, 18 mm from the axis: z = 2 + 18 − √(324 − x²).
+        let z = 20.0 - (324.0f64 - 36.0).sqrt();
+        assert!((s.local(6.0, 6.0).unwrap().z - z).abs() < 1e-14);
+    }
+
+    #[test]
+    fn a_cylinder_follows_the_profile_along_x() {
+        let s = toroid(ToroidSpec {
+            curvature_x_per_mm: Some(0.0),
+            radius_y_mm: Some(-10.0),
+            conic_y: -1.0,
+            ..Default::default()
+        })
+        .unwrap();
+        let l = s.local(1e3, 4.0).unwrap();
+        // Parabola y²/(2R).
+        assert!((l.z + 16.0 / 20.0).abs() < 1e-15, "{}", l.z);
+        assert_eq!((l.zx, l.zxx, l.zxy), (0.0, 0.0, 0.0));
+        assert!(s.describe().contains("cylinder"));
+    }
+
+    #[test]
+    fn beyond_the_section_circle_is_undefined() {
+        let s = toroid(ToroidSpec {
+            radius_x_mm: Some(20.0),
+            radius_y_mm: Some(10.0),
+            ..Default::default()
+        })
+        .unwrap();
+        let e = s.local(18.5, 6.0).unwrap_err();
+        assert!(e.reason.contains("radius |Rx − z_y| = 18 mm"), "{e}");
+        let e = s.local(0.0, 10.0).unwrap_err();
+        assert!(e.reason.contains("|y| = 10 mm"), "{e}");
+        assert_eq!(e.surface, "toroid");
+    }
+}

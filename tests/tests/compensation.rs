@@ -13,28 +13,20 @@
 //! sample: Δa ≤ π/20 000 gives at most 3.1e-9·K, under 2e-8 mm for the cases drawn. The test
 //! computes that bound per point and subtracts it before asserting "no cut deeper than 1e-7 mm".
 //! "Touches" needs no correction: the smallest sample is an upper bound of the true minimum.
+//! The check itself is `common::dense_gap` (whole paths: `common::check_planned_path`).
 
+mod common;
+
+use common::{TOUCH, arc_range, check_gap, check_planned_path, config, dense_gap};
 use proptest::prelude::*;
-use proptest::test_runner::{Config as ProptestConfig, RngSeed};
 use spiralcam::compensate::{NoseCompensator, ToolSpec};
-use spiralcam::job::Job;
-use spiralcam::plan::Planner;
 use spiralcam::surface::{Surface, SurfaceSpec};
 use std::f64::consts::TAU;
 
-/// Contact and no-cut tolerance, mm (0.1 nm).
-const TOUCH: f64 = 1e-7;
 /// Dense samples along the arc (see the module docs).
 const DENSE: usize = 20_000;
-
-fn config(cases: u32) -> ProptestConfig {
-    ProptestConfig {
-        cases,
-        rng_seed: RngSeed::Fixed(3003),
-        failure_persistence: None,
-        ..ProptestConfig::default()
-    }
-}
+/// Seed of this file's property tests.
+const SEED: u64 = 3003;
 
 /// A surface drawn at random, with what the check needs to know about it.
 #[derive(Debug, Clone)]
@@ -206,75 +198,6 @@ fn tool() -> impl Strategy<Value = (f64, f64)> {
         .prop_map(|(lg, beta)| (10f64.powf(lg), beta))
 }
 
-/// The outcome of the dense check of one nose position.
-#[derive(Debug)]
-struct Gap {
-    /// Smallest gap between arc and surface over the samples, mm.
-    min: f64,
-    /// How far the true minimum can lie below `min`, mm.
-    bound: f64,
-    /// Offset u of the smallest sample.
-    at: f64,
-}
-
-/// The nose arc's angle range: |a| ≤ β/2 and |ρ_s + r·sin a| ≤ the part radius.
-fn arc_range(r: f64, half_angle: f64, rho_s: f64, limit: f64) -> (f64, f64) {
-    let asin = |v: f64| v.clamp(-1.0, 1.0).asin();
-    let hi = half_angle.min(asin((limit - rho_s) / r));
-    let lo = (-half_angle).max(asin((-limit - rho_s) / r));
-    (lo, hi)
-}
-
-/// Samples the gap between the nose arc of centre (ρ_s, z_c) and the section at angle θ, at
-/// `samples + 1` equal steps of the nose angle a (u = r·sin a) plus the offsets `extra`.
-#[allow(clippy::too_many_arguments)]
-fn dense_gap(
-    surface: &dyn Surface,
-    r: f64,
-    half_angle: f64,
-    limit: f64,
-    rho_s: f64,
-    theta: f64,
-    z_c: f64,
-    extra: &[f64],
-    samples: usize,
-) -> Gap {
-    let (s, c) = theta.sin_cos();
-    let (lo, hi) = arc_range(r, half_angle, rho_s, limit);
-    let da = (hi - lo) / samples as f64;
-    let mut offsets: Vec<f64> = (0..=samples)
-        .map(|i| r * (lo + da * i as f64).sin())
-        .collect();
-    offsets.push(r * hi.sin());
-    let (ulo, uhi) = (r * lo.sin(), r * hi.sin());
-    offsets.extend(extra.iter().copied().filter(|&u| u >= ulo && u <= uhi));
-    let mut gap = Gap {
-        min: f64::INFINITY,
-        bound: 0.0,
-        at: f64::NAN,
-    };
-    let (mut max_slope, mut max_curv): (f64, f64) = (0.0, 0.0);
-    for u in offsets {
-        let rho = rho_s + u;
-        let l = surface
-            .local(rho * c, rho * s)
-            .unwrap_or_else(|e| panic!("{}: {e}", surface.describe()))
-            .radial(c, s);
-        let g = z_c - (r * r - u * u).max(0.0).sqrt() - l.z;
-        if g < gap.min {
-            gap.min = g;
-            gap.at = u;
-        }
-        max_slope = max_slope.max(l.slope.abs());
-        max_curv = max_curv.max(l.curvature_term.abs());
-    }
-    // g(a) = z_c − r·cos a − f(ρ_s + r·sin a): g″ = r·cos a − r²·cos²a·f″ + r·sin a·f′, so
-    // |g″| ≤ r·(1 + |f′|) + r²·|f″|; the sampled maxima of |f′|, |f″| are doubled as bounds.
-    let k = r * (1.0 + 2.0 * max_slope) + r * r * 2.0 * max_curv;
-    gap.bound = k * da * da / 8.0;
-    gap
-}
-
 /// Checks one compensated point: the arc touches (≤ 0.1 nm) and cuts nowhere (≥ −0.1 nm).
 fn check_point(
     case: &Case,
@@ -338,23 +261,7 @@ fn check_point(
         &extra,
         DENSE,
     );
-    prop_assert!(
-        gap.min <= TOUCH,
-        "{what}: the arc does not touch, smallest gap {:e} mm",
-        gap.min
-    );
-    prop_assert!(
-        gap.min - gap.bound >= -TOUCH,
-        "{what}: the arc cuts {:e} mm into the surface at u {} (sampling bound {:e})",
-        -gap.min,
-        gap.at,
-        gap.bound
-    );
-    prop_assert!(
-        gap.bound < 0.2 * TOUCH,
-        "{what}: sampling too coarse, bound {:e}",
-        gap.bound
-    );
+    check_gap(&what, &gap)?;
 
     // Eq 20 at a smooth contact strictly inside the arc: tan a = f′(ρ_s + r·sin a).
     let (lo, hi) = arc_range(r, half, rho_s, case.part_radius);
@@ -376,7 +283,7 @@ fn check_point(
 }
 
 proptest! {
-    #![proptest_config(config(64))]
+    #![proptest_config(config(64, SEED))]
 
     #[test]
     fn nose_arc_touches_and_never_cuts(
@@ -513,48 +420,10 @@ fn a_nose_centred_over_land_beside_a_convex_lenslet_does_not_cut_it() {
 // ---------------------------------------------------------------------------------------------
 // Whole paths
 
-/// Plans a job and checks every point of its path with the dense gouge check, the arc cut at
-/// the part radius.
+/// Plans a job and checks every point of its path with the dense gouge check
+/// (`common::check_planned_path`, the arc cut at the part radius), told of `case`'s kinks.
 fn check_path(job_json: &str, case: &Case) {
-    let job = Job::from_json(job_json).expect("job JSON");
-    let planner = Planner::new(&job).expect("valid job");
-    let r = job.tool.nose_radius_mm;
-    let half = (job.tool.included_angle_deg / 2.0).to_radians();
-    let surface = planner.surface();
-    let mut n = 0;
-    for p in planner.points() {
-        let p = p.expect("defined surface");
-        let (s, c) = p.theta.sin_cos();
-        let u_c = p.contact[0] * c + p.contact[1] * s - p.rho;
-        let mut extra: Vec<f64> = case.kinks(c, s).iter().map(|k| k - p.rho).collect();
-        extra.push(u_c);
-        let z_c = p.z + r;
-        let gap = dense_gap(
-            surface,
-            r,
-            half,
-            case.part_radius,
-            p.rho,
-            p.theta,
-            z_c,
-            &extra,
-            DENSE,
-        );
-        let at = format!(
-            "{}: point {} (ρ {}, θ {})",
-            job.name, p.index, p.rho, p.theta
-        );
-        assert!(gap.min <= TOUCH, "{at}: no contact, gap {:e}", gap.min);
-        assert!(
-            gap.min - gap.bound >= -TOUCH,
-            "{at}: cuts {:e} mm at u {} (bound {:e})",
-            -gap.min,
-            gap.at,
-            gap.bound
-        );
-        n += 1;
-    }
-    assert_eq!(n, planner.spiral().point_count_hint());
+    check_planned_path(job_json, &|c, s| case.kinks(c, s), DENSE);
 }
 
 #[test]

@@ -5,27 +5,18 @@
 //! paper 004 array with r = 0.5 mm reports none; a spherical bowl of radius smaller than the nose
 //! reports one zone at the centre with the closed-form depth; a nose that fits reports none.
 //!
-//! The oracle. On the section f(u) = sag(u·cos θ, u·sin θ), |u| ≤ part radius R:
-//! dilation `z_c(p) = max_{|u| ≤ w} f(p + u) + √(r² − u²)` (w = r·sin(β/2), arc cut at ±R),
-//! taken over every surface sample of a uniform grid of spacing h_u = 4e-6 mm plus the arc's ends
-//! (error ≤ K·h_u²/8 ≈ 2e-10 mm with K ≈ 1/(r·cos³(β/2)) + |f″| ≈ 80 mm⁻¹ for r = 0.05 mm);
-//! erosion `cut(v) = min_p z_c(p) − √(r² − (v − p)²)` over tool positions p on grids of 51
-//! points across the nose's reach, then of spacings five times finer down to < 2e-8 mm, each
-//! zoomed onto ±2 steps of the previous minimiser (the function of p is unimodal in these cases:
-//! V-shaped at a kink, quadratic in the bowl), so its error is ≤ |slope|·2e-8/2 < 2e-8 mm. The
-//! oracle is thus good to ~0.02 nm (checked against closed forms to 0.05 nm); the library refines
-//! by golden-section search to ~1e-11 mm. Depths are compared within 1 nm.
+//! The oracle is `common::Closing`, whose docs derive its accuracy: ~0.02 nm (checked against
+//! closed forms to 0.05 nm, `common::ORACLE_TOL`); the library refines by golden-section search
+//! to ~1e-11 mm. Depths are compared within 1 nm (`common::DEPTH_TOL`).
 
+mod common;
+
+use common::{Closing, DEPTH_TOL, ORACLE_TOL};
 use spiralcam::compensate::{NoseCompensator, ToolSpec};
 use spiralcam::job::Job;
 use spiralcam::plan::Planner;
 use spiralcam::reach::{LISTED_DEPTH_MM, concave_zones};
 use spiralcam::surface::{Surface, SurfaceSpec};
-
-/// Agreement of depths, mm (see the module docs).
-const DEPTH_TOL: f64 = 1e-6;
-/// Accuracy of the brute-force oracle, mm (see the module docs).
-const ORACLE_TOL: f64 = 5e-8;
 
 fn surface(json: &str, part_radius: f64) -> Box<dyn Surface> {
     let spec: SurfaceSpec = serde_json::from_str(json).expect("surface JSON");
@@ -42,116 +33,6 @@ fn nose(r: f64, beta: f64, s: &dyn Surface, part_radius: f64) -> NoseCompensator
         part_radius,
     )
     .expect("valid tool")
-}
-
-/// Brute-force closing of one radial section (see the module docs).
-struct Closing<'a> {
-    surface: &'a dyn Surface,
-    c: f64,
-    s: f64,
-    r: f64,
-    w: f64,
-    part_radius: f64,
-    /// Surface samples (u, f(u)) on the uniform grid.
-    x0: f64,
-    h: f64,
-    f: Vec<f64>,
-}
-
-/// Spacing of the surface samples, mm.
-const H_U: f64 = 4e-6;
-
-impl<'a> Closing<'a> {
-    /// Samples the section at angle `theta_deg` around v (enough for every nose that can
-    /// reach v).
-    fn new(
-        surface: &'a dyn Surface,
-        theta_deg: f64,
-        r: f64,
-        beta: f64,
-        part_radius: f64,
-        v: f64,
-    ) -> Self {
-        let (s, c) = theta_deg.to_radians().sin_cos();
-        let w = r * (beta / 2.0).to_radians().sin();
-        let x0 = (v - 2.0 * w).max(-part_radius);
-        let x1 = (v + 2.0 * w).min(part_radius);
-        let n = ((x1 - x0) / H_U).floor() as usize;
-        let mut out = Self {
-            surface,
-            c,
-            s,
-            r,
-            w,
-            part_radius,
-            x0,
-            h: H_U,
-            f: Vec::with_capacity(n + 1),
-        };
-        for i in 0..=n {
-            let u = x0 + H_U * i as f64;
-            let z = out.sag(u);
-            out.f.push(z);
-        }
-        out
-    }
-
-    fn sag(&self, u: f64) -> f64 {
-        self.surface
-            .sag(u * self.c, u * self.s)
-            .unwrap_or_else(|e| panic!("{e}"))
-    }
-
-    /// Height of the nose centre at tool position p: the largest f(x) + √(r² − (x − p)²) over
-    /// the samples under the arc and the arc's two ends.
-    fn dilate(&self, p: f64) -> f64 {
-        let r2 = self.r * self.r;
-        let lo = (p - self.w).max(-self.part_radius);
-        let hi = (p + self.w).min(self.part_radius);
-        let mut best = f64::NEG_INFINITY;
-        for x in [lo, hi] {
-            best = best.max(self.sag(x) + (r2 - (x - p) * (x - p)).max(0.0).sqrt());
-        }
-        let i0 = ((lo - self.x0) / self.h).ceil().max(0.0) as usize;
-        let i1 = (((hi - self.x0) / self.h).floor() as usize).min(self.f.len() - 1);
-        for i in i0..=i1 {
-            let x = self.x0 + self.h * i as f64;
-            let d = x - p;
-            best = best.max(self.f[i] + (r2 - d * d).max(0.0).sqrt());
-        }
-        best
-    }
-
-    /// Height of the cut surface at v: the lowest nose arc over v.
-    fn cut(&self, v: f64) -> f64 {
-        let r2 = self.r * self.r;
-        let g = |p: f64| self.dilate(p) - (r2 - (v - p) * (v - p)).max(0.0).sqrt();
-        let (mut lo, mut hi) = (
-            (v - self.w).max(-self.part_radius),
-            (v + self.w).min(self.part_radius),
-        );
-        let mut step = (hi - lo) / 50.0;
-        let mut best = (f64::INFINITY, v);
-        while step >= 2e-9 {
-            let n = ((hi - lo) / step).ceil() as usize;
-            for k in 0..=n {
-                let p = (lo + step * k as f64).min(hi);
-                let value = g(p);
-                if value < best.0 {
-                    best = (value, p);
-                }
-            }
-            lo = (best.1 - 2.0 * step).max(lo);
-            hi = (best.1 + 2.0 * step).min(hi);
-            step /= 5.0;
-        }
-        best.0
-    }
-
-    /// The closing residual at v: material the nose leaves above the surface, mm.
-    fn residual(&self, v: f64) -> f64 {
-        self.cut(v) - self.sag(v)
-    }
 }
 
 /// The signed radial coordinates where the section at `theta_deg` crosses the rim (radius

@@ -5,19 +5,15 @@
 //! does not bind, the cap holds everywhere and the count hint is close; direction and start
 //! angle are honoured; bad parameters name their field.
 
+mod common;
+
+use common::config;
 use proptest::prelude::*;
-use proptest::test_runner::{Config as ProptestConfig, RngSeed};
 use spiralcam::spiral::{Direction, Sampling, Spiral, SpiralPoint, arc_length};
 use std::f64::consts::TAU;
 
-fn config(cases: u32) -> ProptestConfig {
-    ProptestConfig {
-        cases,
-        rng_seed: RngSeed::Fixed(2002),
-        failure_persistence: None,
-        ..ProptestConfig::default()
-    }
-}
+/// Seed of this file's property tests.
+const SEED: u64 = 2002;
 
 fn direction() -> impl Strategy<Value = Direction> {
     prop_oneof![Just(Direction::Ccw), Just(Direction::Cw)]
@@ -75,7 +71,7 @@ fn constant_angle_case() -> impl Strategy<Value = (f64, f64, u32, Direction, f64
 }
 
 proptest! {
-    #![proptest_config(config(48))]
+    #![proptest_config(config(48, SEED))]
 
     #[test]
     fn constant_angle_pitch_is_the_feed_and_steps_are_equal(
@@ -225,7 +221,7 @@ fn constant_arc_case() -> impl Strategy<Value = (f64, f64, f64, f64, Direction, 
 const ARC_REL: f64 = 1e-8;
 
 proptest! {
-    #![proptest_config(config(48))]
+    #![proptest_config(config(48, SEED))]
 
     #[test]
     fn constant_arc_steps_are_the_arc_length_or_the_angle_cap(

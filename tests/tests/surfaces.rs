@@ -3,15 +3,12 @@
 //! independent implementation (closed forms, direct `powi` sums, direct monomials, a brute-force
 //! search over every lenslet centre), and the errors for undefined points and bad parameters.
 //!
-//! Finite differences: with step h the central difference of a function g has truncation error
-//! `h²/6·|g‴|` and rounding error about `ε·|g|/h`. With h = 1e-5 mm, sags of a few mm and third
-//! (fourth, for the Hessian from the analytic gradient) derivatives below 10⁴ mm⁻² (mm⁻³), both
-//! stay below 2e-7 + 1e-7·|value|, the tolerance used (a wrong factor or index in any term is
-//! orders of magnitude larger).
+//! Finite differences: `common::check_derivatives`, whose docs derive its tolerance.
 
+mod common;
+
+use common::{check_derivatives, check_field_errors, config, local};
 use proptest::prelude::*;
-use proptest::test_runner::{Config as ProptestConfig, RngSeed};
-use spiralcam::field::FieldError;
 use spiralcam::surface::lens_array::{Form, Grid};
 use spiralcam::surface::xy_polynomial::XyTerm;
 use spiralcam::surface::{
@@ -20,55 +17,8 @@ use spiralcam::surface::{
 };
 use std::f64::consts::PI;
 
-/// Finite-difference step, mm.
-const H: f64 = 1e-5;
-/// Absolute and relative tolerance of a finite-difference derivative (see the module docs).
-const FD_ABS: f64 = 2e-7;
-const FD_REL: f64 = 1e-7;
-
-fn config(cases: u32) -> ProptestConfig {
-    ProptestConfig {
-        cases,
-        rng_seed: RngSeed::Fixed(1001),
-        failure_persistence: None,
-        ..ProptestConfig::default()
-    }
-}
-
-fn local(s: &dyn Surface, x: f64, y: f64) -> Local {
-    s.local(x, y)
-        .unwrap_or_else(|e| panic!("{} at ({x}, {y}): {e}", s.describe()))
-}
-
-/// Compares the analytic gradient with central differences of the sag, and the analytic second
-/// derivatives with central differences of the analytic gradient (both mixed derivatives).
-fn check_derivatives(s: &dyn Surface, x: f64, y: f64) -> Result<(), TestCaseError> {
-    let l = local(s, x, y);
-    let xp = local(s, x + H, y);
-    let xm = local(s, x - H, y);
-    let yp = local(s, x, y + H);
-    let ym = local(s, x, y - H);
-    let d = |p: f64, m: f64| (p - m) / (2.0 * H);
-    let pairs = [
-        ("dz/dx", l.zx, d(xp.z, xm.z)),
-        ("dz/dy", l.zy, d(yp.z, ym.z)),
-        ("d2z/dx2", l.zxx, d(xp.zx, xm.zx)),
-        ("d2z/dxdy (d/dy of dz/dx)", l.zxy, d(yp.zx, ym.zx)),
-        ("d2z/dxdy (d/dx of dz/dy)", l.zxy, d(xp.zy, xm.zy)),
-        ("d2z/dy2", l.zyy, d(yp.zy, ym.zy)),
-    ];
-    for (what, analytic, fd) in pairs {
-        let tol = FD_ABS + FD_REL * analytic.abs();
-        prop_assert!(
-            (analytic - fd).abs() <= tol,
-            "{}: {what} at ({x}, {y}): analytic {analytic}, finite difference {fd}, \
-             difference {:e} > {tol:e}",
-            s.describe(),
-            (analytic - fd).abs()
-        );
-    }
-    Ok(())
-}
+/// Seed of this file's property tests.
+const SEED: u64 = 1001;
 
 // ---------------------------------------------------------------------------------------------
 // Even asphere
@@ -142,7 +92,7 @@ fn in_disc(max_rho: f64, t: f64, phi: f64) -> (f64, f64) {
 }
 
 proptest! {
-    #![proptest_config(config(256))]
+    #![proptest_config(config(256, SEED))]
 
     #[test]
     fn asphere_derivatives_match_finite_differences(
@@ -317,7 +267,7 @@ fn xy_point(case: &XyCase, t: f64, phi: f64) -> (f64, f64) {
 }
 
 proptest! {
-    #![proptest_config(config(256))]
+    #![proptest_config(config(256, SEED))]
 
     #[test]
     fn xy_polynomial_derivatives_match_finite_differences(
@@ -505,7 +455,7 @@ fn lens_fractions() -> impl Strategy<Value = Vec<(f64, f64, f64, bool)>> {
 }
 
 proptest! {
-    #![proptest_config(config(256))]
+    #![proptest_config(config(256, SEED))]
 
     #[test]
     fn lens_array_derivatives_match_finite_differences(m in lens_model(), f in lens_fractions()) {
@@ -597,7 +547,7 @@ fn build_sine(c: &SineCase) -> Sinusoid {
 }
 
 proptest! {
-    #![proptest_config(config(256))]
+    #![proptest_config(config(256, SEED))]
 
     #[test]
     fn sinusoid_derivatives_match_finite_differences(
@@ -705,15 +655,6 @@ fn conics_beyond_their_rim_are_undefined_and_say_where() {
     assert!(e.to_string().contains("radius"), "{e}");
 }
 
-/// Builds a surface from its JSON, expecting a field error.
-fn field_error(json: &str) -> FieldError {
-    let spec: SurfaceSpec = serde_json::from_str(json).unwrap_or_else(|e| panic!("{json}: {e}"));
-    match spec.build(5.0) {
-        Ok(s) => panic!("{json} built {}", s.describe()),
-        Err(e) => e,
-    }
-}
-
 #[test]
 fn bad_parameters_name_their_field() {
     let cases = [
@@ -790,13 +731,7 @@ fn bad_parameters_name_their_field() {
             "0",
         ),
     ];
-    for (json, field, value) in cases {
-        let e = field_error(json);
-        assert_eq!(e.field, field, "{json}: {e}");
-        assert_eq!(e.value, value, "{json}: {e}");
-        assert!(!e.allowed.is_empty(), "{json}: {e}");
-        assert_eq!(e.to_string(), format!("{field} = {value}: {}", e.allowed));
-    }
+    check_field_errors(&cases);
     // Non-finite values cannot come from JSON; through the Rust API they name their field.
     let e = Asphere::new(&AsphereSpec {
         radius_mm: Some(10.0),

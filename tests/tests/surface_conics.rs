@@ -820,6 +820,7 @@ fn the_example_jobs_build() {
     // The example jobs of the documentation parse, validate and describe themselves.
     check_example_jobs(&[
         ("biconic.json", "biconic"),
+        ("toroid.json", "toroid"),
         ("off-axis-parabola.json", "off-axis segment"),
         ("tilted-flat.json", "tilted flat"),
     ]);

@@ -51,6 +51,31 @@ export class Planned {
 }
 
 /**
+ * Mean-power and cylinder maps of a progressive lens, for the page's map panel.
+ */
+export class PowerMaps {
+    private constructor();
+    free(): void;
+    [Symbol.dispose](): void;
+    /**
+     * Cylinder, D (NaN outside the part).
+     */
+    readonly cylinder_d: Float32Array;
+    /**
+     * Mean power, D, row by row from −y to +y (NaN outside the part).
+     */
+    readonly mean_d: Float32Array;
+    /**
+     * Samples per side of the square grid.
+     */
+    readonly size: number;
+    /**
+     * Grid spacing, mm.
+     */
+    readonly step_mm: number;
+}
+
+/**
  * The 3-D view of a surface and its tool path on a canvas.
  */
 export class Viewer {
@@ -120,6 +145,11 @@ export function check_job(job: any): void;
 export function colormap_css(): string;
 
 /**
+ * The height colour scale's stops, (t, r, g, b) each in [0, 1], for maps drawn in JavaScript.
+ */
+export function colormap_stops(): Float32Array;
+
+/**
  * The CSV table of `job`, byte for byte what `spiralcam plan JOB --csv FILE` writes.
  */
 export function csv_table(job: any, progress: Function): Uint8Array;
@@ -141,6 +171,12 @@ export function nc_program(job: any, progress: Function): Uint8Array;
 export function plan(job: any, progress: Function): Planned;
 
 /**
+ * The power maps of `job` when its surface is a progressive lens (with the lens's refractive
+ * index), else `undefined`.
+ */
+export function power_maps(job: any, size: number): PowerMaps | undefined;
+
+/**
  * The crate version, shown on the page.
  */
 export function version(): string;
@@ -150,9 +186,11 @@ export type InitInput = RequestInfo | URL | Response | BufferSource | WebAssembl
 export interface InitOutput {
     readonly memory: WebAssembly.Memory;
     readonly __wbg_planned_free: (a: number, b: number) => void;
+    readonly __wbg_powermaps_free: (a: number, b: number) => void;
     readonly __wbg_viewer_free: (a: number, b: number) => void;
     readonly check_job: (a: any) => [number, number];
     readonly colormap_css: () => [number, number];
+    readonly colormap_stops: () => [number, number];
     readonly csv_table: (a: any, b: any) => [number, number, number, number];
     readonly default_job: () => [number, number];
     readonly nc_program: (a: any, b: any) => [number, number, number, number];
@@ -167,6 +205,11 @@ export interface InitOutput {
     readonly planned_revolution_step: (a: number) => number;
     readonly planned_z_max: (a: number) => number;
     readonly planned_z_min: (a: number) => number;
+    readonly power_maps: (a: any, b: number) => [number, number, number];
+    readonly powermaps_cylinder_d: (a: number) => [number, number];
+    readonly powermaps_mean_d: (a: number) => [number, number];
+    readonly powermaps_size: (a: number) => number;
+    readonly powermaps_step_mm: (a: number) => number;
     readonly version: () => [number, number];
     readonly viewer_backend: (a: number) => [number, number];
     readonly viewer_create: (a: any) => any;
@@ -179,12 +222,12 @@ export interface InitOutput {
     readonly viewer_set_surface: (a: number, b: number, c: number, d: number, e: number, f: number, g: number, h: number, i: number) => void;
     readonly viewer_z_exaggeration: (a: number) => number;
     readonly viewer_zoom: (a: number, b: number) => void;
-    readonly wasm_bindgen__convert__closures_____invoke__h0188c6c16f57def8: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h0188c6c16f57def8_32: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h0188c6c16f57def8_33: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_38: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_39: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h6a9a4c771fb11aad: (a: number, b: number, c: any, d: any) => void;
     readonly wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h82239b8f0315e64c: (a: number, b: number, c: any) => void;
+    readonly wasm_bindgen__convert__closures_____invoke__hc37317138617a3f5: (a: number, b: number, c: any) => void;
     readonly __wbindgen_malloc: (a: number, b: number) => number;
     readonly __wbindgen_realloc: (a: number, b: number, c: number, d: number) => number;
     readonly __wbindgen_free: (a: number, b: number, c: number) => void;

@@ -136,6 +136,65 @@ export class Planned {
 if (Symbol.dispose) Planned.prototype[Symbol.dispose] = Planned.prototype.free;
 
 /**
+ * Mean-power and cylinder maps of a progressive lens, for the page's map panel.
+ */
+export class PowerMaps {
+    static __wrap(ptr) {
+        const obj = Object.create(PowerMaps.prototype);
+        obj.__wbg_ptr = ptr;
+        PowerMapsFinalization.register(obj, obj.__wbg_ptr, obj);
+        return obj;
+    }
+    __destroy_into_raw() {
+        const ptr = this.__wbg_ptr;
+        this.__wbg_ptr = 0;
+        PowerMapsFinalization.unregister(this);
+        return ptr;
+    }
+    free() {
+        const ptr = this.__destroy_into_raw();
+        wasm.__wbg_powermaps_free(ptr, 0);
+    }
+    /**
+     * Cylinder, D (NaN outside the part).
+     * @returns {Float32Array}
+     */
+    get cylinder_d() {
+        const ret = wasm.powermaps_cylinder_d(this.__wbg_ptr);
+        var v1 = getArrayF32FromWasm0(ret[0], ret[1]).slice();
+        wasm.__wbindgen_free(ret[0], ret[1] * 4, 4);
+        return v1;
+    }
+    /**
+     * Mean power, D, row by row from −y to +y (NaN outside the part).
+     * @returns {Float32Array}
+     */
+    get mean_d() {
+        const ret = wasm.powermaps_mean_d(this.__wbg_ptr);
+        var v1 = getArrayF32FromWasm0(ret[0], ret[1]).slice();
+        wasm.__wbindgen_free(ret[0], ret[1] * 4, 4);
+        return v1;
+    }
+    /**
+     * Samples per side of the square grid.
+     * @returns {number}
+     */
+    get size() {
+        const ret = wasm.powermaps_size(this.__wbg_ptr);
+        return ret >>> 0;
+    }
+    /**
+     * Grid spacing, mm.
+     * @returns {number}
+     */
+    get step_mm() {
+        const ret = wasm.powermaps_step_mm(this.__wbg_ptr);
+        return ret;
+    }
+}
+if (Symbol.dispose) PowerMaps.prototype[Symbol.dispose] = PowerMaps.prototype.free;
+
+/**
  * The 3-D view of a surface and its tool path on a canvas.
  */
 export class Viewer {
@@ -309,6 +368,17 @@ export function colormap_css() {
 }
 
 /**
+ * The height colour scale's stops, (t, r, g, b) each in [0, 1], for maps drawn in JavaScript.
+ * @returns {Float32Array}
+ */
+export function colormap_stops() {
+    const ret = wasm.colormap_stops();
+    var v1 = getArrayF32FromWasm0(ret[0], ret[1]).slice();
+    wasm.__wbindgen_free(ret[0], ret[1] * 4, 4);
+    return v1;
+}
+
+/**
  * The CSV table of `job`, byte for byte what `spiralcam plan JOB --csv FILE` writes.
  * @param {any} job
  * @param {Function} progress
@@ -370,6 +440,21 @@ export function plan(job, progress) {
         throw takeFromExternrefTable0(ret[1]);
     }
     return Planned.__wrap(ret[0]);
+}
+
+/**
+ * The power maps of `job` when its surface is a progressive lens (with the lens's refractive
+ * index), else `undefined`.
+ * @param {any} job
+ * @param {number} size
+ * @returns {PowerMaps | undefined}
+ */
+export function power_maps(job, size) {
+    const ret = wasm.power_maps(job, size);
+    if (ret[2]) {
+        throw takeFromExternrefTable0(ret[1]);
+    }
+    return ret[0] === 0 ? undefined : PowerMaps.__wrap(ret[0]);
 }
 
 /**
@@ -2365,28 +2450,28 @@ function __wbg_get_imports() {
             arg0.writeBuffer(arg1, arg2, getArrayU8FromWasm0(arg3, arg4), arg5, arg6);
         }, arguments); },
         __wbindgen_generic_0000000000000001: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [Externref], shim_idx: 2191, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [Externref], shim_idx: 2233, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
             const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c);
             return ret;
         },
         __wbindgen_generic_0000000000000002: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("GPUDevice")], shim_idx: 153, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0188c6c16f57def8);
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("GPUDevice")], shim_idx: 195, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56);
             return ret;
         },
         __wbindgen_generic_0000000000000003: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("GPUUncapturedErrorEvent")], shim_idx: 156, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h82239b8f0315e64c);
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("GPUUncapturedErrorEvent")], shim_idx: 199, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__hc37317138617a3f5);
             return ret;
         },
         __wbindgen_generic_0000000000000004: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("any")], shim_idx: 153, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0188c6c16f57def8_32);
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("any")], shim_idx: 195, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_38);
             return ret;
         },
         __wbindgen_generic_0000000000000005: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("undefined")], shim_idx: 153, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0188c6c16f57def8_33);
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("undefined")], shim_idx: 195, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_39);
             return ret;
         },
         __wbindgen_generic_0000000000000006: function(arg0) {
@@ -2459,8 +2544,8 @@ function __wbg_get_imports() {
     };
 }
 
-function wasm_bindgen__convert__closures_____invoke__h82239b8f0315e64c(arg0, arg1, arg2) {
-    wasm.wasm_bindgen__convert__closures_____invoke__h82239b8f0315e64c(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__hc37317138617a3f5(arg0, arg1, arg2) {
+    wasm.wasm_bindgen__convert__closures_____invoke__hc37317138617a3f5(arg0, arg1, arg2);
 }
 
 function wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c(arg0, arg1, arg2) {
@@ -2470,22 +2555,22 @@ function wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c(arg0, arg
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h0188c6c16f57def8(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h0188c6c16f57def8(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h0188c6c16f57def8_32(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h0188c6c16f57def8_32(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_38(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_38(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h0188c6c16f57def8_33(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h0188c6c16f57def8_33(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_39(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_39(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }
@@ -2569,6 +2654,9 @@ const __wbindgen_enum_GpuVertexStepMode = ["vertex", "instance"];
 const PlannedFinalization = (typeof FinalizationRegistry === 'undefined')
     ? { register: () => {}, unregister: () => {} }
     : new FinalizationRegistry(ptr => wasm.__wbg_planned_free(ptr, 1));
+const PowerMapsFinalization = (typeof FinalizationRegistry === 'undefined')
+    ? { register: () => {}, unregister: () => {} }
+    : new FinalizationRegistry(ptr => wasm.__wbg_powermaps_free(ptr, 1));
 const ViewerFinalization = (typeof FinalizationRegistry === 'undefined')
     ? { register: () => {}, unregister: () => {} }
     : new FinalizationRegistry(ptr => wasm.__wbg_viewer_free(ptr, 1));

@@ -4,7 +4,7 @@
 // `document.body.dataset.state` ("loading", "planning", "done", "error", "cancelled") and
 // `window.spiralcam` (plans started and finished, the report, the backend) for the browser tests.
 
-import init, { Viewer, default_job, colormap_css, version } from '../pkg/spiralcam_web.js';
+import init, { Viewer, default_job, colormap_css, colormap_stops, version } from '../pkg/spiralcam_web.js';
 import { JobForm } from './form.js';
 
 const $ = (id) => document.getElementById(id);
@@ -131,6 +131,50 @@ function showReport(report, job) {
   }));
 }
 
+/** A colour from the shared scale at t in [0, 1]: [r, g, b] in 0…255. */
+function colour(stops, t) {
+  const n = stops.length / 4;
+  t = Math.min(1, Math.max(0, t));
+  for (let k = 1; k < n; k++) {
+    const [t0, t1] = [stops[4 * (k - 1)], stops[4 * k]];
+    if (t <= t1 || k === n - 1) {
+      const w = t1 > t0 ? (t - t0) / (t1 - t0) : 0;
+      return [1, 2, 3].map((c) => 255 * (stops[4 * (k - 1) + c] * (1 - w) + stops[4 * k + c] * w));
+    }
+  }
+  return [0, 0, 0];
+}
+
+/** Draws a map (row j = −y … +y, column i = −x … +x) on `canvas`, +y up; NaN left blank. */
+function drawMap(canvas, values, size, stops) {
+  let lo = Infinity;
+  let hi = -Infinity;
+  for (const v of values) if (Number.isFinite(v)) [lo, hi] = [Math.min(lo, v), Math.max(hi, v)];
+  const ctx = canvas.getContext('2d');
+  const image = ctx.createImageData(size, size);
+  for (let j = 0; j < size; j++) {
+    for (let i = 0; i < size; i++) {
+      const v = values[j * size + i];
+      const o = 4 * ((size - 1 - j) * size + i);
+      if (!Number.isFinite(v)) continue;
+      const [r, g, b] = colour(stops, hi > lo ? (v - lo) / (hi - lo) : 0.5);
+      image.data.set([r, g, b, 255], o);
+    }
+  }
+  ctx.putImageData(image, 0, 0);
+  return [lo, hi];
+}
+
+/** The power maps panel (progressive lenses). */
+function showMaps(maps, stops) {
+  $('maps').hidden = !maps;
+  if (!maps) return;
+  for (const [name, values] of [['mean', maps.mean], ['cylinder', maps.cylinder]]) {
+    const [lo, hi] = drawMap($(`map-${name}`), values, maps.size, stops);
+    $(`map-${name}-range`).textContent = `${fmt(lo, 2)} … ${fmt(hi, 2)} D`;
+  }
+}
+
 /** The colour legend beside the view. */
 function showLegend(zMin, zMax, exaggeration, revolutionStep) {
   const ticks = $('legend-ticks');
@@ -202,6 +246,8 @@ async function main() {
   await init();
   $('version').textContent = `v${version()}`;
   $('legend-bar').style.background = colormap_css();
+  const stops = colormap_stops();
+  for (const bar of document.querySelectorAll('#maps .bar')) bar.style.background = colormap_css().replace('to top', 'to right');
 
   const canvas = $('view');
   let viewer = null;
@@ -276,6 +322,7 @@ async function main() {
       status.report = m.report;
       status.plans += 1;
       showReport(m.report, job);
+      showMaps(m.maps, stops);
       $('plan-time').textContent = `planned in ${fmt((performance.now() - started) / 1000, 2)} s`;
       if (viewer) {
         viewer.set_surface(m.positions, m.normals, m.indices, m.zMin, m.zMax);

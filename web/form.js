@@ -19,7 +19,7 @@ export const SURFACES = {
   asphere: {
     label: 'Even asphere',
     fields: [
-      { key: 'base', kind: 'base' },
+      { kind: 'radius', label: 'Vertex' },
       { key: 'conic', label: 'Conic k', unit: '', hint: '0 sphere, −1 paraboloid', optionalNumber: true },
       { key: 'coefficients', kind: 'coefficients' },
     ],
@@ -27,9 +27,130 @@ export const SURFACES = {
   xy_polynomial: {
     label: 'XY polynomial',
     fields: [
-      { key: 'base', kind: 'nested_base' },
+      { kind: 'radius', object: 'base', label: 'Base vertex' },
+      { key: 'base.conic', label: 'Base conic k', unit: '', optionalNumber: true },
       { key: 'norm_radius_mm', label: 'Normalisation radius N', unit: 'mm', hint: '> 0' },
       { key: 'terms', kind: 'terms' },
+    ],
+  },
+  zernike: {
+    label: 'Zernike (Standard or Fringe)',
+    fields: [
+      { key: 'convention', label: 'Convention', options: ['standard', 'fringe'], optionLabels: ['Standard (Noll, RMS-normalised, ≤ 231)', 'Fringe (Arizona, ≤ 37)'] },
+      { kind: 'radius', object: 'base', label: 'Base vertex' },
+      { key: 'base.conic', label: 'Base conic k', unit: '', optionalNumber: true },
+      { key: 'norm_radius_mm', label: 'Normalisation radius N', unit: 'mm', hint: '> 0' },
+      { key: 'coefficients_mm', kind: 'list', label: 'Coefficients c₁, c₂, … (mm)', hint: 'in index order of the convention; see crate/docs/zernike.md' },
+    ],
+  },
+  biconic: {
+    label: 'Biconic',
+    fields: [
+      { kind: 'radius', suffix: '_x', label: 'X section' },
+      { key: 'conic_x', label: 'Conic kx', unit: '', optionalNumber: true },
+      { kind: 'radius', suffix: '_y', label: 'Y section' },
+      { key: 'conic_y', label: 'Conic ky', unit: '', optionalNumber: true },
+    ],
+  },
+  toroid: {
+    label: 'Toroid',
+    fields: [
+      { kind: 'radius', suffix: '_x', label: 'Rotation (X)' },
+      { kind: 'radius', suffix: '_y', label: 'Profile (Y)' },
+      { key: 'conic_y', label: 'Profile conic ky', unit: '', optionalNumber: true },
+    ],
+  },
+  off_axis_conic: {
+    label: 'Off-axis conic segment',
+    fields: [
+      { kind: 'radius', object: 'parent', label: 'Parent vertex' },
+      { key: 'parent.conic', label: 'Parent conic k', unit: '', optionalNumber: true },
+      { key: 'off_axis_distance_mm', label: 'Off-axis distance d', unit: 'mm', hint: '≥ 0' },
+      { key: 'clocking_deg', label: 'Clocking α', unit: '°' },
+      { key: 'remove_tilt', label: 'Remove tilt', options: ['false', 'true'], optionLabels: ['no', 'yes'], boolean: true },
+    ],
+  },
+  tilted_flat: {
+    label: 'Tilted flat',
+    fields: [
+      { key: 'tilt_deg', label: 'Tilt τ', unit: '°', hint: '|τ| < 90' },
+      { key: 'azimuth_deg', label: 'Azimuth β', unit: '°', hint: 'direction of steepest ascent from +X' },
+    ],
+  },
+  pal: {
+    label: 'Progressive addition lens',
+    fields: [
+      { key: 'far_power_d', label: 'Far power', unit: 'D' },
+      { key: 'addition_d', label: 'Addition', unit: 'D' },
+      { key: 'corridor_length_mm', label: 'Corridor length h', unit: 'mm' },
+      { key: 'far_point_mm', label: 'Far point L', unit: 'mm', hint: 'F at x = −L' },
+      { key: 'far_order', label: 'Far order m', unit: '', hint: '3 … 8' },
+      { key: 'near_order', label: 'Near order l', unit: '', hint: '3 … 8' },
+      { key: 'refractive_index', label: 'Refractive index n', unit: '' },
+      {
+        key: 'contours', kind: 'variant', label: 'Contour curves',
+        variants: {
+          straight_line: { label: 'straight lines', defaults: {} },
+          circle: { label: 'circles', defaults: { centre_x_mm: 100 } },
+          hyperbola: { label: 'hyperbolas', defaults: { centre_x_mm: -100, asymptote_slope: 1 } },
+        },
+      },
+      { key: 'contours.centre_x_mm', label: 'Contour centre x', unit: 'mm', when: { field: 'contours.type', is: ['circle', 'hyperbola'] } },
+      { key: 'contours.asymptote_slope', label: 'Asymptote slope a', unit: '', when: { field: 'contours.type', is: ['hyperbola'] } },
+    ],
+  },
+  compound_eye: {
+    label: 'Compound eye',
+    fields: [
+      { key: 'base_radius_mm', label: 'Base sphere radius', unit: 'mm', hint: 'negative: dome towards the tool; blank: flat', optionalNumber: true },
+      { key: 'element_rings', label: 'Element rings', unit: '', hint: '0 → 1 element, 1 → 7, 2 → 19' },
+      { key: 'element_pitch_mm', label: 'Element pitch', unit: 'mm' },
+      { key: 'element_radius_mm', label: 'Element radius', unit: 'mm' },
+      { key: 'element_height_mm', label: 'Element height', unit: 'mm', hint: 'along the base normal' },
+      { key: 'lenslet_rows', kind: 'list', label: 'Lenslets per row', hint: 'e.g. 3, 4, 3, 4, 3 = 17 lenslets' },
+      { key: 'lenslet_pitch_mm', label: 'Lenslet pitch', unit: 'mm' },
+      { key: 'lenslet_radius_mm', label: 'Lenslet radius', unit: 'mm' },
+      { key: 'lenslet_height_mm', label: 'Lenslet height', unit: 'mm', hint: 'along the element normal' },
+    ],
+  },
+  nurbs: {
+    label: 'NURBS (control net)',
+    fields: [
+      { key: 'degree_u', label: 'Degree in u', unit: '', hint: '1 … 15' },
+      { key: 'degree_v', label: 'Degree in v', unit: '', hint: '1 … 15' },
+      { key: 'knots_u', kind: 'list', label: 'Knots u', hint: 'n + p + 1 non-decreasing numbers' },
+      { key: 'knots_v', kind: 'list', label: 'Knots v', hint: 'm + q + 1 non-decreasing numbers' },
+      { key: 'control_points', kind: 'json', rows: 10, label: 'Control points (JSON rows of [x, y, z], mm)' },
+      { key: 'weights', kind: 'json', rows: 3, label: 'Weights (JSON rows; null = all 1)' },
+    ],
+  },
+  step_face: {
+    label: 'STEP face (B-spline/NURBS)',
+    fields: [
+      { key: 'file', kind: 'file', accept: '.step,.stp', label: 'STEP file' },
+      { key: 'face', kind: 'json', rows: 1, label: 'Face (index or "#id"; null = the only one)' },
+      { key: 'units', label: 'Length unit', options: ['file', 'mm', 'um', 'm', 'inch'], optionLabels: ['as the file states', 'mm', 'µm', 'm', 'inch'] },
+      { key: 'flip', label: 'Flip (axis along −Z)', options: ['false', 'true'], optionLabels: ['no', 'yes'], boolean: true },
+      { key: 'z_offset_mm', label: 'Z offset', unit: 'mm', optionalNumber: true },
+    ],
+  },
+  scattered: {
+    label: 'Scattered data (RBF, paper 004)',
+    fields: [
+      { key: 'data', kind: 'file', accept: '.csv,.txt,.grid', label: 'Data file', hint: 'CSV x, y, z (mm) or a height grid' },
+      { key: 'method', label: 'Interpolator', options: ['rbf', 'shepard', 'four_point_mean', 'hermite'], optionLabels: ['RBF (eqs 4–6)', 'Shepard (IDW)', 'four-point mean', 'Hermite (grid only)'] },
+      { key: 'neighbours', label: 'Neighbours n', unit: '', hint: 'blank: 8 (rbf 4…16, shepard 2…16)', optionalNumber: true, when: { field: 'method', is: ['rbf', 'shepard'] } },
+      { key: 'rbf_distance', label: 'RBF distance', options: ['', 'l1', 'euclidean'], optionLabels: ['by data (grid: L1, else Euclidean)', 'L1 (eq 4; grid data only)', 'Euclidean'], optional: true, when: { field: 'method', is: ['rbf'] } },
+      { key: 'rbf_polynomial', label: 'RBF polynomial term', options: ['linear', 'constant', 'none'], optionLabels: ['linear (reproduces planes)', 'constant', 'none (eq 6 as printed)'], when: { field: 'method', is: ['rbf'] } },
+      { key: 'rbf_c', label: 'RBF constant c', unit: '', hint: 'blank: default', optionalNumber: true, when: { field: 'method', is: ['rbf'] } },
+      { key: 'rbf_scale', label: 'RBF scale', unit: '× spacing', hint: '0.01 … 100, blank: 1', optionalNumber: true, when: { field: 'method', is: ['rbf'] } },
+    ],
+  },
+  composite: {
+    label: 'Composite (base + terms)',
+    fields: [
+      { key: 'base', kind: 'json', rows: 5, label: 'Base surface (JSON)', hint: 'any family, as in the job format' },
+      { key: 'terms', kind: 'json', rows: 14, label: 'Terms (JSON list)', hint: '[{"surface": {…}, "decenter_x_mm", "decenter_y_mm", "rotation_deg"}]' },
     ],
   },
   sinusoid: {
@@ -46,9 +167,33 @@ export const SURFACES = {
 
 /** Presets offered above the surface form. */
 export const PRESETS = {
+  paper000: {
+    label: 'Paper 000 multiple compound eye (7 elements × 17 lenslets, Ø10 mm; dimensions ours)',
+    apply: (job) => {
+      job.name = 'compound-eye-paper000';
+      job.part.diameter_mm = 10;
+      job.surface = { type: 'compound_eye', ...structuredClone(FAMILY_DEFAULTS.compound_eye) };
+      job.tool.nose_radius_mm = 0.05;
+      job.strategy.feed_mm_per_rev = 0.005;
+      job.strategy.sampling = { type: 'constant_arc', arc_length_mm: 0.0175, max_angle_step_deg: 1 };
+    },
+  },
+  paper003: {
+    label: 'Paper 003 Table 1 progressive lens on Ø70 mm (finishing: 180 points/rev, 0.01 mm/rev, r 0.8 mm)',
+    apply: (job) => {
+      job.name = 'pal-paper003';
+      job.machine.spindle_rpm = 60;
+      job.part.diameter_mm = 70;
+      job.surface = { type: 'pal', ...structuredClone(FAMILY_DEFAULTS.pal) };
+      job.tool.nose_radius_mm = 0.8;
+      job.strategy.feed_mm_per_rev = 0.01;
+      job.strategy.sampling = { type: 'constant_angle', points_per_rev: 180 };
+    },
+  },
   paper004: {
     label: 'Paper 004 Table 1 lens array (Ø10 mm, R 2.84 mm, 1 mm pitch, −44.4 µm)',
     apply: (job) => {
+      job.name = 'lens-array-paper004';
       job.part.diameter_mm = 10;
       job.surface = { type: 'lens_array', lens_radius_mm: 2.84, aperture_mm: 1, pitch_mm: 1, grid: 'rectangular', form: 'concave' };
     },
@@ -61,6 +206,36 @@ const FAMILY_DEFAULTS = {
   asphere: { radius_mm: 40, conic: 0 },
   xy_polynomial: { base: { radius_mm: 80 }, norm_radius_mm: 5, terms: [{ x: 2, y: 1, coefficient_mm: 0.001 }] },
   sinusoid: { amplitude_mm: 0.002, wavelength_x_mm: 1, wavelength_y_mm: 1, phase_x_deg: 0, phase_y_deg: 0 },
+  zernike: { convention: 'standard', base: { radius_mm: 100 }, norm_radius_mm: 5, coefficients_mm: [0, 0, 0, 0, 0.001, 0, 0.0005] },
+  biconic: { radius_x_mm: 50, radius_y_mm: 80, conic_x: 0, conic_y: -1 },
+  toroid: { radius_x_mm: 50, radius_y_mm: 80, conic_y: 0 },
+  off_axis_conic: { parent: { radius_mm: 100, conic: -1 }, off_axis_distance_mm: 15, clocking_deg: 0, remove_tilt: false },
+  tilted_flat: { tilt_deg: 0.05, azimuth_deg: 0 },
+  pal: {
+    far_power_d: 1, addition_d: 2, corridor_length_mm: 30, far_point_mm: 10, far_order: 3, near_order: 3,
+    refractive_index: 1.498, contours: { type: 'hyperbola', centre_x_mm: -100, asymptote_slope: 1 },
+  },
+  compound_eye: {
+    base_radius_mm: -40, element_rings: 1, element_pitch_mm: 2.6, element_radius_mm: 8, element_height_mm: 0.1,
+    lenslet_rows: [3, 4, 3, 4, 3], lenslet_pitch_mm: 0.45, lenslet_radius_mm: 2, lenslet_height_mm: 0.016,
+  },
+  nurbs: {
+    degree_u: 2, degree_v: 2, knots_u: [0, 0, 0, 1, 1, 1], knots_v: [0, 0, 0, 1, 1, 1],
+    control_points: [
+      [[-6, -6, 0.36], [-6, 0, 0], [-6, 6, 0.36]],
+      [[0, -6, 0], [0, 0, -0.36], [0, 6, 0]],
+      [[6, -6, 0.36], [6, 0, 0], [6, 6, 0.36]],
+    ],
+  },
+  step_face: { file: {} },
+  scattered: { data: {}, method: 'rbf' },
+  composite: {
+    base: { type: 'asphere', radius_mm: 60 },
+    terms: [{
+      surface: { type: 'lens_array', lens_radius_mm: 2.84, aperture_mm: 1, pitch_mm: 1, grid: 'hexagonal', form: 'convex' },
+      decenter_x_mm: 0.5, decenter_y_mm: 0, rotation_deg: 15,
+    }],
+  },
 };
 
 /** The fixed sections: [section title, [field descriptions]]. */
@@ -198,27 +373,8 @@ export class JobForm {
     const box = el('div', { class: 'surface-fields' });
     const s = this.job.surface;
     for (const f of SURFACES[s.type].fields) {
-      if (f.kind === 'base' || f.kind === 'nested_base') {
-        const prefix = f.kind === 'base' ? 'surface' : 'surface.base';
-        const base = f.kind === 'base' ? s : s.base;
-        const byRadius = base.curvature_per_mm === undefined;
-        const which = select(['radius_mm', 'curvature_per_mm'], ['vertex radius R (mm)', 'vertex curvature c (1/mm)']);
-        which.value = byRadius ? 'radius_mm' : 'curvature_per_mm';
-        which.dataset.role = 'base-kind';
-        which.dataset.prefix = prefix;
-        const v = el('input', { type: 'text', inputMode: 'decimal' });
-        v.value = String(byRadius ? base.radius_mm : base.curvature_per_mm);
-        v.dataset.kind = 'base-value';
-        v.dataset.prefix = prefix;
-        box.append(row(`${prefix}.${which.value}`, f.kind === 'base' ? 'Base' : 'Base asphere', v, '', 'R ≠ 0; c = 0 for a plane'));
-        box.lastChild.insertBefore(which, v);
-        if (f.kind === 'nested_base') {
-          const k = el('input', { type: 'text', inputMode: 'decimal' });
-          k.value = base.conic === undefined ? '' : String(base.conic);
-          k.dataset.kind = 'number';
-          k.dataset.optional = '1';
-          box.append(row('surface.base.conic', 'Base conic k', k, ''));
-        }
+      if (f.kind === 'radius') {
+        box.append(this.radiusRow(f, s));
       } else if (f.kind === 'coefficients') {
         const coeffs = s.coefficients || [];
         const grid = el('div', { class: 'coefficients' });
@@ -235,23 +391,104 @@ export class JobForm {
           el('span', { class: 'error', 'data-error-for': 'surface.coefficients' })));
       } else if (f.kind === 'terms') {
         box.append(this.termsTable(s.terms || []));
+      } else if (f.kind === 'list') {
+        box.append(this.listRow(f, s));
+      } else if (f.kind === 'json') {
+        box.append(this.jsonRow(f, s));
+      } else if (f.kind === 'file') {
+        box.append(this.fileRow(f, s));
+      } else if (f.kind === 'variant') {
+        box.append(this.variantRow(f, s));
       } else {
-        const value = s[f.key];
+        const value = get(s, f.key);
         let control;
         if (f.options) {
-          control = select(f.options);
-          control.value = value;
-          control.dataset.kind = 'choice';
+          control = select(f.options, f.optionLabels);
+          control.value = value === undefined ? String(f.options[0]) : String(value);
+          control.dataset.kind = f.boolean ? 'bool' : 'choice';
+          if (f.optional) control.dataset.optional = '1';
         } else {
           control = el('input', { type: 'text', inputMode: 'decimal' });
           control.value = value === undefined ? '' : String(value);
           control.dataset.kind = 'number';
           if (f.optionalNumber) control.dataset.optional = '1';
         }
-        box.append(row(`surface.${f.key}`, f.label, control, f.unit, f.hint));
+        const r = row(`surface.${f.key}`, f.label, control, f.unit, f.hint);
+        if (f.when) {
+          r.dataset.whenField = `surface.${f.when.field}`;
+          r.dataset.when = f.when.is.join(' ');
+        }
+        box.append(r);
       }
     }
     return box;
+  }
+
+  /** A vertex radius or curvature (exactly one of `radius<suffix>_mm`, `curvature<suffix>_per_mm`)
+   * of the object at `f.object` within the surface ('' for the surface itself). */
+  radiusRow(f, s) {
+    const obj = f.object ? get(s, f.object) : s;
+    const sfx = f.suffix || '';
+    const [rKey, cKey] = [`radius${sfx}_mm`, `curvature${sfx}_per_mm`];
+    const byRadius = obj[cKey] === undefined;
+    const which = select([rKey, cKey], ['radius (mm)', 'curvature (1/mm)']);
+    which.value = byRadius ? rKey : cKey;
+    which.dataset.role = 'radius-kind';
+    const v = el('input', { type: 'text', inputMode: 'decimal' });
+    v.value = String((byRadius ? obj[rKey] : obj[cKey]) ?? '');
+    v.dataset.kind = 'radius-value';
+    for (const c of [which, v]) {
+      c.dataset.object = f.object || '';
+      c.dataset.suffix = sfx;
+    }
+    const prefix = f.object ? `surface.${f.object}` : 'surface';
+    const r = row(`${prefix}.${which.value}`, f.label, v, '', 'R ≠ 0; curvature 0 for flat');
+    r.insertBefore(which, v);
+    return r;
+  }
+
+  /** A choice among object variants (e.g. PAL contour families): switching resets the object. */
+  variantRow(f, s) {
+    const names = Object.keys(f.variants);
+    const control = select(names, names.map((n) => f.variants[n].label));
+    control.value = get(s, f.key)?.type ?? names[0];
+    control.dataset.role = 'variant';
+    control.dataset.key = f.key;
+    return row(`surface.${f.key}.type`, f.label, control, '');
+  }
+
+  /** A list of numbers typed with commas or spaces, e.g. Zernike coefficients. */
+  listRow(f, s) {
+    const t = el('textarea', { rows: 3, spellcheck: false, placeholder: f.placeholder || '' });
+    t.value = (s[f.key] || []).join(', ');
+    t.dataset.kind = 'list';
+    const r = row(`surface.${f.key}`, f.label, t, f.unit, f.hint);
+    r.classList.add('wide');
+    return r;
+  }
+
+  /** A JSON editor for a structured value (composite terms, a NURBS control net). */
+  jsonRow(f, s) {
+    const t = el('textarea', { rows: f.rows || 10, spellcheck: false, class: 'json' });
+    t.value = JSON.stringify(get(s, f.key) ?? null, null, 2);
+    t.dataset.kind = 'json';
+    const r = row(`surface.${f.key}`, f.label, t, '', f.hint);
+    r.classList.add('wide');
+    return r;
+  }
+
+  /** A data file read in the browser and sent as text (the command line reads paths). */
+  fileRow(f, s) {
+    const file = s[f.key] || {};
+    const input = el('input', { type: 'file', accept: f.accept || '' });
+    input.dataset.kind = 'file';
+    const what = file.text !== undefined
+      ? `${file.name || 'loaded'}: ${(file.text.length / 1024).toFixed(1)} kB`
+      : file.path ? `${file.path} (not loaded: choose the file)` : 'no file';
+    const r = row(`surface.${f.key}`, f.label, input, '', f.hint);
+    r.classList.add('wide');
+    r.append(el('span', { class: 'file-state' }, what));
+    return r;
   }
 
   termsTable(terms) {
@@ -278,14 +515,26 @@ export class JobForm {
   }
 
   updateVisibility() {
-    const type = get(this.job, 'strategy.sampling.type');
-    for (const r of this.root.querySelectorAll('[data-when]')) r.hidden = r.dataset.when !== type;
+    for (const r of this.root.querySelectorAll('[data-when]')) {
+      const field = r.dataset.whenField || 'strategy.sampling.type';
+      // An option left out of the job has the value its control shows (the default).
+      const value = String(get(this.job, field) ?? this.root.querySelector(`[data-field="${field}"]`)?.value);
+      r.hidden = !r.dataset.when.split(' ').includes(value);
+      // A hidden surface option does not apply to the choice made: it leaves the job.
+      if (r.hidden && r.dataset.whenField) {
+        for (const c of r.querySelectorAll('[data-field]')) {
+          set(this.job, c.dataset.field, undefined);
+          if (c.tagName === 'INPUT') c.value = '';
+          if (c.tagName === 'SELECT') c.selectedIndex = 0;
+        }
+      }
+    }
   }
 
   /** Applies one edit to the job and tells the owner. */
   edited(e) {
     const t = e.target;
-    if (e.type === 'input' && t.tagName === 'SELECT') return;
+    if (e.type === 'input' && (t.tagName === 'SELECT' || t.type === 'file')) return;
     if (t.dataset.role === 'preset') {
       if (!t.value) return;
       PRESETS[t.value].apply(this.job);
@@ -293,13 +542,41 @@ export class JobForm {
     } else if (t.dataset.role === 'family') {
       this.job.surface = { type: t.value, ...structuredClone(FAMILY_DEFAULTS[t.value]) };
       this.show(this.job);
-    } else if (t.dataset.role === 'base-kind') {
-      const base = t.dataset.prefix === 'surface' ? this.job.surface : this.job.surface.base;
-      const v = base.radius_mm ?? base.curvature_per_mm;
-      delete base.radius_mm;
-      delete base.curvature_per_mm;
-      base[t.value] = v;
+    } else if (t.dataset.role === 'radius-kind') {
+      const obj = t.dataset.object ? get(this.job.surface, t.dataset.object) : this.job.surface;
+      const sfx = t.dataset.suffix;
+      const [rKey, cKey] = [`radius${sfx}_mm`, `curvature${sfx}_per_mm`];
+      const v = obj[rKey] ?? obj[cKey];
+      delete obj[rKey];
+      delete obj[cKey];
+      obj[t.value] = v;
       this.show(this.job);
+    } else if (t.dataset.role === 'variant') {
+      const f = SURFACES[this.job.surface.type].fields.find((x) => x.key === t.dataset.key);
+      set(this.job.surface, t.dataset.key, { type: t.value, ...structuredClone(f.variants[t.value].defaults) });
+      this.show(this.job);
+    } else if (t.dataset.kind === 'file') {
+      const file = t.files[0];
+      if (!file) return;
+      const key = t.dataset.field.split('.').pop();
+      file.text().then((text) => {
+        this.job.surface[key] = { text };
+        this.show(this.job);
+        this.root.querySelector(`[data-field="${t.dataset.field}"]`)?.closest('.row')
+          ?.querySelector('.file-state')?.replaceChildren(`${file.name}: ${(text.length / 1024).toFixed(1)} kB`);
+        this.onChange();
+      });
+      return;
+    } else if (t.dataset.kind === 'json') {
+      try {
+        set(this.job, t.dataset.field, JSON.parse(t.value));
+        t.classList.remove('invalid');
+        t.closest('.row').querySelector('.error').textContent = '';
+      } catch (err) {
+        t.classList.add('invalid');
+        t.closest('.row').querySelector('.error').textContent = `${t.dataset.field}: not JSON: ${err.message}`;
+        return;
+      }
     } else if (t.dataset.kind) {
       this.read(t);
       if (t.dataset.field === 'strategy.sampling.type') {
@@ -308,6 +585,7 @@ export class JobForm {
           : { type: 'constant_arc', arc_length_mm: 0.02, max_angle_step_deg: 1 };
         this.show(this.job);
       }
+      this.updateVisibility();
     } else {
       return;
     }
@@ -319,14 +597,15 @@ export class JobForm {
     const path = t.dataset.field;
     switch (t.dataset.kind) {
       case 'text': set(this.job, path, t.value); break;
-      case 'choice': set(this.job, path, t.value); break;
+      case 'choice': set(this.job, path, t.dataset.optional && t.value === '' ? undefined : t.value); break;
       case 'sign': set(this.job, path, t.value === '' ? undefined : Number(t.value)); break;
       case 'bool': set(this.job, path, t.value === '' ? undefined : t.value === 'true'); break;
       case 'number': set(this.job, path, t.dataset.optional && t.value.trim() === '' ? undefined : number(t.value)); break;
-      case 'base-value': {
-        const base = t.dataset.prefix === 'surface' ? this.job.surface : this.job.surface.base;
-        const key = base.curvature_per_mm === undefined ? 'radius_mm' : 'curvature_per_mm';
-        base[key] = number(t.value);
+      case 'radius-value': {
+        const obj = t.dataset.object ? get(this.job.surface, t.dataset.object) : this.job.surface;
+        const sfx = t.dataset.suffix;
+        const key = obj[`curvature${sfx}_per_mm`] === undefined ? `radius${sfx}_mm` : `curvature${sfx}_per_mm`;
+        obj[key] = number(t.value);
         break;
       }
       case 'coefficient': {
@@ -335,6 +614,11 @@ export class JobForm {
         while (values.length && values[values.length - 1] === 0 && inputs[values.length - 1].value.trim() === '') values.pop();
         if (values.length) this.job.surface.coefficients = values;
         else delete this.job.surface.coefficients;
+        break;
+      }
+      case 'list': {
+        const items = t.value.split(/[\s,;]+/).filter((v) => v !== '');
+        set(this.job, path, items.map(Number));
         break;
       }
       case 'term': {

@@ -2,7 +2,10 @@
 // progress messages and one result ({kind: "planned" | "bytes"}) or {kind: "error", message}.
 // Typed arrays are transferred, not copied.
 
-import init, { plan, nc_program, csv_table } from '../pkg/spiralcam_web.js';
+import init, { plan, nc_program, csv_table, power_maps } from '../pkg/spiralcam_web.js';
+
+/** Samples per side of the power maps. */
+const MAP_SIZE = 161;
 
 const ready = init();
 
@@ -27,7 +30,14 @@ self.onmessage = async (e) => {
         names: { nc: p.nc_file_name, csv: p.csv_file_name },
       };
       p.free();
-      self.postMessage(m, [m.positions.buffer, m.normals.buffer, m.indices.buffer, m.path.buffer]);
+      const transfer = [m.positions.buffer, m.normals.buffer, m.indices.buffer, m.path.buffer];
+      const maps = power_maps(job, MAP_SIZE);
+      if (maps) {
+        m.maps = { size: maps.size, stepMm: maps.step_mm, mean: maps.mean_d, cylinder: maps.cylinder_d };
+        maps.free();
+        transfer.push(m.maps.mean.buffer, m.maps.cylinder.buffer);
+      }
+      self.postMessage(m, transfer);
     } else {
       const bytes = kind === 'nc' ? nc_program(job, progress) : csv_table(job, progress);
       self.postMessage({ id, kind: 'bytes', bytes }, [bytes.buffer]);

@@ -14,6 +14,8 @@
 use spiralcam::display::{DisplayPath, SurfaceMesh};
 use spiralcam::job::Job;
 use spiralcam::plan::{Planner, Progress, Sinks};
+use spiralcam::power_map::PowerMap;
+use spiralcam::surface::{PartDisc, SurfaceSpec};
 use std::ops::ControlFlow;
 use wasm_bindgen::prelude::*;
 
@@ -186,6 +188,59 @@ fn output_file(
         .run(sinks(&mut out), &mut reporter(progress))
         .map_err(|e| JsError::new(&e.to_string()))?;
     Ok(out)
+}
+
+/// Mean-power and cylinder maps of a progressive lens, for the page's map panel.
+#[wasm_bindgen]
+pub struct PowerMaps {
+    map: PowerMap,
+}
+
+#[wasm_bindgen]
+impl PowerMaps {
+    /// Samples per side of the square grid.
+    #[wasm_bindgen(getter)]
+    pub fn size(&self) -> usize {
+        self.map.size
+    }
+
+    /// Mean power, D, row by row from −y to +y (NaN outside the part).
+    #[wasm_bindgen(getter)]
+    pub fn mean_d(&self) -> Vec<f32> {
+        self.map.mean_d.iter().map(|&v| v as f32).collect()
+    }
+
+    /// Cylinder, D (NaN outside the part).
+    #[wasm_bindgen(getter)]
+    pub fn cylinder_d(&self) -> Vec<f32> {
+        self.map.cylinder_d.iter().map(|&v| v as f32).collect()
+    }
+
+    /// Grid spacing, mm.
+    #[wasm_bindgen(getter)]
+    pub fn step_mm(&self) -> f64 {
+        self.map.step_mm
+    }
+}
+
+/// The power maps of `job` when its surface is a progressive lens (with the lens's refractive
+/// index), else `undefined`.
+#[wasm_bindgen]
+pub fn power_maps(job: JsValue, size: usize) -> Result<Option<PowerMaps>, JsError> {
+    let planner = read_job(job)?;
+    let SurfaceSpec::Pal(pal) = &planner.job().surface else {
+        return Ok(None);
+    };
+    let part = PartDisc::centred(planner.job().part_radius_mm());
+    let map = PowerMap::sample(planner.surface(), part, pal.refractive_index, size)
+        .map_err(|e| JsError::new(&e.to_string()))?;
+    Ok(Some(PowerMaps { map }))
+}
+
+/// The height colour scale's stops, (t, r, g, b) each in [0, 1], for maps drawn in JavaScript.
+#[wasm_bindgen]
+pub fn colormap_stops() -> Vec<f32> {
+    crate::colormap::STOPS.iter().flatten().copied().collect()
 }
 
 /// Checks `job` without planning; throws the first field error.

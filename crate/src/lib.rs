@@ -8,14 +8,18 @@
 //! cannot reach the surface, and the [`nc`] writers turn the points into NC programs and CSV.
 //! [`plan`] runs the whole chain as a stream, so memory does not grow with the point count.
 
+pub mod analysis;
 pub mod compensate;
 pub mod data_file;
 pub mod display;
 pub mod field;
 pub mod job;
+pub mod linearization;
 pub mod nc;
 pub mod plan;
 pub mod power_map;
+pub mod predicted_form;
+pub mod raster;
 pub mod reach;
 pub mod report;
 pub mod spiral;

@@ -2,18 +2,24 @@
 //!
 //! ```text
 //! spiralcam plan JOB.json [--nc FILE] [--csv FILE] [--report FILE]
+//! spiralcam analyse JOB.json [--report FILE] [--maps PREFIX]
 //! spiralcam sag JOB.json --at POINTS.csv
 //! ```
 //!
 //! `plan` streams the path into the files asked for (each written to `FILE.partial` and renamed
 //! when complete, so a failed run never leaves a truncated program) and prints the report as
-//! JSON on standard output unless `--report` names a file. `sag` prints sag, gradient and second
+//! JSON on standard output unless `--report` names a file. `analyse` plans the job and reports its
+//! accuracy ([`spiralcam::analysis`]: linearization error, predicted form) as JSON, and with
+//! `--maps` writes both maps as `PREFIX-linearization.csv` and `PREFIX-form.csv`
+//! (`x_mm,y_mm,error_um`). `sag` prints sag, gradient and second
 //! derivatives of the job's surface at each `x_mm,y_mm` row of a CSV file. Data files a job
 //! names by path (scattered points, STEP files) are read relative to the job file.
 
+use spiralcam::analysis::Analysis;
 use spiralcam::display::DisplayPath;
 use spiralcam::job::Job;
 use spiralcam::plan::{Planner, Progress, Sinks};
+use spiralcam::raster::Raster;
 use std::fs::File;
 use std::io::{BufWriter, IsTerminal, Write};
 use std::ops::ControlFlow;
@@ -24,6 +30,9 @@ const USAGE: &str = "usage:
   spiralcam plan JOB.json [--nc FILE] [--csv FILE] [--report FILE]
       plan the job; write the NC program, the point table (CSV) and the report (JSON,
       standard output when --report is not given)
+  spiralcam analyse JOB.json [--report FILE] [--maps PREFIX]
+      the accuracy of the planned path: linearization error between NC points and the
+      predicted machined form (JSON); --maps writes both maps as PREFIX-*.csv
   spiralcam sag JOB.json --at POINTS.csv
       print z, gradient and second derivatives of the job's surface at each x_mm,y_mm row
   spiralcam --version";
@@ -32,6 +41,7 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
         Some("plan") => plan(&args[1..]),
+        Some("analyse") => analyse(&args[1..]),
         Some("sag") => sag(&args[1..]),
         Some("--version" | "-V") => {
             println!("spiralcam {}", env!("CARGO_PKG_VERSION"));
@@ -41,7 +51,9 @@ fn main() -> ExitCode {
             println!("{USAGE}");
             Ok(())
         }
-        _ => Err(Failure::Usage("expected a command: plan or sag".into())),
+        _ => Err(Failure::Usage(
+            "expected a command: plan, analyse or sag".into(),
+        )),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -183,8 +195,68 @@ fn plan(args: &[String]) -> Result<(), Failure> {
     for w in &report.warnings {
         eprintln!("warning: {w}");
     }
-    let json = report.to_json() + "\n";
-    match args.get("--report") {
+    write_report(args.get("--report"), report.to_json() + "\n")
+}
+
+fn analyse(args: &[String]) -> Result<(), Failure> {
+    let args = parse(args, &["--report", "--maps"])?;
+    let job = read_job(&args.job)?;
+    let planner = Planner::new(&job).map_err(run_err)?;
+    let tty = std::io::stderr().is_terminal();
+    let mut progress = |p: Progress| {
+        if tty {
+            progress_bar(p);
+        }
+        ControlFlow::Continue(())
+    };
+    let analysis = Analysis::run(&planner, MAP_SIZE, &mut progress).map_err(run_err);
+    if tty {
+        eprintln!();
+    }
+    let analysis = analysis?;
+    if let Some(prefix) = args.get("--maps") {
+        let name = |what: &str| {
+            let mut p = prefix.as_os_str().to_owned();
+            p.push(format!("-{what}.csv"));
+            PathBuf::from(p)
+        };
+        write_map(&name("linearization"), analysis.linearization_map())?;
+        write_map(&name("form"), &analysis.form_map())?;
+    }
+    write_report(args.get("--report"), analysis.to_json() + "\n")
+}
+
+/// Samples per side of the maps `analyse --maps` writes.
+const MAP_SIZE: usize = 256;
+
+/// Writes the defined samples of `map` as `x_mm,y_mm,error_um` rows.
+fn write_map(path: &Path, map: &Raster) -> Result<(), Failure> {
+    let mut out = Output::create(path)?;
+    let mut write = || -> std::io::Result<()> {
+        writeln!(out.writer, "x_mm,y_mm,error_um")?;
+        for j in 0..map.size {
+            for i in 0..map.size {
+                let v = map.values[j * map.size + i];
+                if !v.is_nan() {
+                    let (x, y) = map.position(i, j);
+                    writeln!(out.writer, "{x:.6},{y:.6},{v:.6}")?;
+                }
+            }
+        }
+        Ok(())
+    };
+    match write() {
+        Ok(()) => out.commit(),
+        Err(e) => {
+            out.discard();
+            Err(Failure::Run(format!("{}: {e}", path.display())))
+        }
+    }
+}
+
+/// Writes a JSON report to `path`, or to standard output.
+fn write_report(path: Option<&Path>, json: String) -> Result<(), Failure> {
+    match path {
         Some(path) => {
             std::fs::write(path, json).map_err(|e| Failure::Run(format!("{}: {e}", path.display())))
         }

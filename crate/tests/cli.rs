@@ -1,9 +1,11 @@
 //! The command-line tool, run as a process: `plan` writes the NC program, the CSV and the report
 //! (the same bytes as the library, the report's figures consistent with the files and the plan),
-//! prints the report without `--report`; `sag` prints the library's sag and derivatives; bad
+//! prints the report without `--report`; `analyse` prints the library's accuracy figures and
+//! writes its maps; `sag` prints the library's sag and derivatives; bad
 //! values exit 1 naming the field, missing files exit 1 naming the file, usage errors exit 2
 //! with the usage; a failed plan leaves no output (nor `.partial`) behind.
 
+use spiralcam::analysis::Analysis;
 use spiralcam::job::Job;
 use spiralcam::plan::{Planner, Sinks};
 use std::ffi::OsStr;
@@ -229,6 +231,57 @@ fn plan_without_report_prints_it() {
     // Without --nc the program is still generated, into a counter: its size is the library's.
     check_report(&value, &job, library_output(&job).0.len() as u64);
     assert_eq!(dir.files(), ["job.json"]);
+}
+
+#[test]
+fn analyse_prints_the_library_figures_and_writes_the_maps() {
+    let dir = Scratch::new("analyse");
+    let job_path = dir.write("job.json", JOB);
+    let prefix = dir.path("acc");
+    let o = spiralcam(&[
+        OsStr::new("analyse"),
+        job_path.as_os_str(),
+        OsStr::new("--maps"),
+        prefix.as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let printed: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("analysis JSON");
+    let job = Job::from_json(JOB).unwrap();
+    let planner = Planner::new(&job).unwrap();
+    // The command line's maps have 256 samples per side.
+    let analysis = Analysis::run(&planner, 256, &mut |_| ControlFlow::Continue(())).unwrap();
+    let expected: serde_json::Value = serde_json::from_str(&analysis.to_json()).unwrap();
+    assert_eq!(printed, expected);
+    assert_eq!(printed["linearization"]["segments"], 240);
+    assert!(
+        printed["predicted_form"]["cusp_height_um"]
+            .as_f64()
+            .unwrap()
+            > 0.0
+    );
+    let maps = [
+        (
+            "acc-linearization.csv",
+            analysis.linearization_map().clone(),
+        ),
+        ("acc-form.csv", analysis.form_map()),
+    ];
+    for (file, map) in maps {
+        let text = std::fs::read_to_string(dir.path(file)).unwrap();
+        let mut lines = text.lines();
+        assert_eq!(lines.next(), Some("x_mm,y_mm,error_um"));
+        let rows: Vec<Vec<f64>> = lines
+            .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+            .collect();
+        let defined = map.values.iter().filter(|v| !v.is_nan()).count();
+        assert!(defined > 0, "{file}: empty map");
+        assert_eq!(rows.len(), defined, "{file}");
+        // Each row is a defined sample at its position, printed to 1e-6 µm.
+        for r in &rows {
+            let k = map.index_of(r[0], r[1]).unwrap();
+            assert!((map.values[k] - r[2]).abs() <= 5e-7, "{file}: {r:?}");
+        }
+    }
 }
 
 #[test]

@@ -1,0 +1,97 @@
+//! The accuracy analysis of a planned path, in one pass over it: the cutting linearization
+//! error between NC points ([`crate::linearization`], paper 000) and the machined form predicted
+//! from the nose swept along the path ([`crate::predicted_form`]). The command line prints it
+//! as JSON (`spiralcam analyse`); the page shows its figures and both maps.
+//!
+//! The two measure different things: the linearization error is found at its extremes on every
+//! segment; the predicted form samples the path where it crosses 360 half-planes through the
+//! axis, so it sees the linearization error only at those crossings (with constant-angle
+//! sampling of 720 points per revolution the half-planes fall on NC points, where it is zero),
+//! and adds what the linearization check leaves out: the cusps between passes and the nose's
+//! envelope.
+
+use crate::linearization::{LinearizationCheck, LinearizationReport};
+use crate::plan::{PROGRESS_EVERY, PlanError, Planner, Progress};
+use crate::predicted_form::{FormPredictor, FormSettings, PredictedForm};
+use crate::raster::Raster;
+use serde::Serialize;
+use std::ops::ControlFlow;
+
+/// Both analyses of one path.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Analysis {
+    /// The job's name.
+    pub job: String,
+    /// The linearization error between consecutive NC points.
+    pub linearization: LinearizationReport,
+    /// The predicted machined form; `None` where it cannot be predicted (see `notes`).
+    pub predicted_form: Option<PredictedForm>,
+    /// Why an analysis is missing.
+    pub notes: Vec<String>,
+}
+
+impl Analysis {
+    /// Runs both analyses over `planner`'s path with maps of `map_size` × `map_size` samples;
+    /// `progress` sees the points read and may stop the run ([`PlanError::Cancelled`]).
+    pub fn run(
+        planner: &Planner,
+        map_size: usize,
+        progress: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+    ) -> Result<Self, PlanError> {
+        let total = planner.spiral().point_count_hint();
+        let mut linearization = LinearizationCheck::new(planner, map_size);
+        let mut notes = Vec::new();
+        let mut form = match FormPredictor::new(planner, &FormSettings::default(), map_size) {
+            Ok(f) => Some(f),
+            Err(PlanError::Job(e)) => {
+                notes.push(format!("no predicted form: {e}"));
+                None
+            }
+            Err(e) => return Err(e),
+        };
+        let mut done = 0u64;
+        for p in planner.points() {
+            let p = p?;
+            linearization.add(planner, &p)?;
+            if let Some(f) = form.as_mut() {
+                f.push(&p)?;
+            }
+            done += 1;
+            if done.is_multiple_of(PROGRESS_EVERY) && progress(Progress { done, total }).is_break()
+            {
+                return Err(PlanError::Cancelled);
+            }
+        }
+        let _ = progress(Progress { done, total });
+        Ok(Self {
+            job: planner.job().name.clone(),
+            linearization: linearization.finish(),
+            predicted_form: form.map(FormPredictor::finish).transpose()?,
+            notes,
+        })
+    }
+
+    /// The figures as pretty JSON (the maps left out).
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
+    }
+
+    /// The linearization error map, µm.
+    pub fn linearization_map(&self) -> &Raster {
+        &self.linearization.map
+    }
+
+    /// The predicted form error map, µm (all NaN without a prediction).
+    pub fn form_map(&self) -> Raster {
+        match &self.predicted_form {
+            Some(f) => f.map.clone(),
+            None => {
+                let lin = &self.linearization.map;
+                Raster {
+                    values: vec![f64::NAN; lin.values.len()],
+                    ..lin.clone()
+                }
+            }
+        }
+    }
+}

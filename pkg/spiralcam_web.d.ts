@@ -2,6 +2,31 @@
 /* eslint-disable */
 
 /**
+ * The accuracy analysis of a job's path, for the page's accuracy panel.
+ */
+export class Accuracy {
+    private constructor();
+    free(): void;
+    [Symbol.dispose](): void;
+    /**
+     * Predicted form error, µm (positive: material left); NaN without a prediction.
+     */
+    readonly form_error_um: Float32Array;
+    /**
+     * Signed linearization error, µm (negative: overcut).
+     */
+    readonly linearization_um: Float32Array;
+    /**
+     * The figures as JSON (see `spiralcam::analysis::Analysis`).
+     */
+    readonly report: string;
+    /**
+     * Samples per side of both maps.
+     */
+    readonly size: number;
+}
+
+/**
  * A planned job: the report and what the page draws.
  */
 export class Planned {
@@ -135,6 +160,12 @@ export class Viewer {
 }
 
 /**
+ * Plans `job` and analyses its accuracy (linearization error, predicted form) with maps of
+ * `size` × `size` samples, the same figures `spiralcam analyse` prints.
+ */
+export function analyse(job: any, size: number, progress: Function): Accuracy;
+
+/**
  * Checks `job` without planning; throws the first field error.
  */
 export function check_job(job: any): void;
@@ -185,9 +216,15 @@ export type InitInput = RequestInfo | URL | Response | BufferSource | WebAssembl
 
 export interface InitOutput {
     readonly memory: WebAssembly.Memory;
+    readonly __wbg_accuracy_free: (a: number, b: number) => void;
     readonly __wbg_planned_free: (a: number, b: number) => void;
     readonly __wbg_powermaps_free: (a: number, b: number) => void;
     readonly __wbg_viewer_free: (a: number, b: number) => void;
+    readonly accuracy_form_error_um: (a: number) => [number, number];
+    readonly accuracy_linearization_um: (a: number) => [number, number];
+    readonly accuracy_report: (a: number) => [number, number];
+    readonly accuracy_size: (a: number) => number;
+    readonly analyse: (a: any, b: number, c: any) => [number, number, number];
     readonly check_job: (a: any) => [number, number];
     readonly colormap_css: () => [number, number];
     readonly colormap_stops: () => [number, number];
@@ -223,8 +260,8 @@ export interface InitOutput {
     readonly viewer_z_exaggeration: (a: number) => number;
     readonly viewer_zoom: (a: number, b: number) => void;
     readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_38: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_39: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_43: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_44: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h6a9a4c771fb11aad: (a: number, b: number, c: any, d: any) => void;
     readonly wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__hc37317138617a3f5: (a: number, b: number, c: any) => void;

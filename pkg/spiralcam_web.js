@@ -1,6 +1,73 @@
 /* @ts-self-types="./spiralcam_web.d.ts" */
 
 /**
+ * The accuracy analysis of a job's path, for the page's accuracy panel.
+ */
+export class Accuracy {
+    static __wrap(ptr) {
+        const obj = Object.create(Accuracy.prototype);
+        obj.__wbg_ptr = ptr;
+        AccuracyFinalization.register(obj, obj.__wbg_ptr, obj);
+        return obj;
+    }
+    __destroy_into_raw() {
+        const ptr = this.__wbg_ptr;
+        this.__wbg_ptr = 0;
+        AccuracyFinalization.unregister(this);
+        return ptr;
+    }
+    free() {
+        const ptr = this.__destroy_into_raw();
+        wasm.__wbg_accuracy_free(ptr, 0);
+    }
+    /**
+     * Predicted form error, µm (positive: material left); NaN without a prediction.
+     * @returns {Float32Array}
+     */
+    get form_error_um() {
+        const ret = wasm.accuracy_form_error_um(this.__wbg_ptr);
+        var v1 = getArrayF32FromWasm0(ret[0], ret[1]).slice();
+        wasm.__wbindgen_free(ret[0], ret[1] * 4, 4);
+        return v1;
+    }
+    /**
+     * Signed linearization error, µm (negative: overcut).
+     * @returns {Float32Array}
+     */
+    get linearization_um() {
+        const ret = wasm.accuracy_linearization_um(this.__wbg_ptr);
+        var v1 = getArrayF32FromWasm0(ret[0], ret[1]).slice();
+        wasm.__wbindgen_free(ret[0], ret[1] * 4, 4);
+        return v1;
+    }
+    /**
+     * The figures as JSON (see `spiralcam::analysis::Analysis`).
+     * @returns {string}
+     */
+    get report() {
+        let deferred1_0;
+        let deferred1_1;
+        try {
+            const ret = wasm.accuracy_report(this.__wbg_ptr);
+            deferred1_0 = ret[0];
+            deferred1_1 = ret[1];
+            return getStringFromWasm0(ret[0], ret[1]);
+        } finally {
+            wasm.__wbindgen_free(deferred1_0, deferred1_1, 1);
+        }
+    }
+    /**
+     * Samples per side of both maps.
+     * @returns {number}
+     */
+    get size() {
+        const ret = wasm.accuracy_size(this.__wbg_ptr);
+        return ret >>> 0;
+    }
+}
+if (Symbol.dispose) Accuracy.prototype[Symbol.dispose] = Accuracy.prototype.free;
+
+/**
  * A planned job: the report and what the page draws.
  */
 export class Planned {
@@ -338,6 +405,22 @@ export class Viewer {
     }
 }
 if (Symbol.dispose) Viewer.prototype[Symbol.dispose] = Viewer.prototype.free;
+
+/**
+ * Plans `job` and analyses its accuracy (linearization error, predicted form) with maps of
+ * `size` × `size` samples, the same figures `spiralcam analyse` prints.
+ * @param {any} job
+ * @param {number} size
+ * @param {Function} progress
+ * @returns {Accuracy}
+ */
+export function analyse(job, size, progress) {
+    const ret = wasm.analyse(job, size, progress);
+    if (ret[2]) {
+        throw takeFromExternrefTable0(ret[1]);
+    }
+    return Accuracy.__wrap(ret[0]);
+}
 
 /**
  * Checks `job` without planning; throws the first field error.
@@ -2466,12 +2549,12 @@ function __wbg_get_imports() {
         },
         __wbindgen_generic_0000000000000004: function(arg0, arg1) {
             // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("any")], shim_idx: 195, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_38);
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_43);
             return ret;
         },
         __wbindgen_generic_0000000000000005: function(arg0, arg1) {
             // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("undefined")], shim_idx: 195, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_39);
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_44);
             return ret;
         },
         __wbindgen_generic_0000000000000006: function(arg0) {
@@ -2562,15 +2645,15 @@ function wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56(arg0, arg
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_38(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_38(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_43(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_43(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_39(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_39(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_44(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_44(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }
@@ -2651,6 +2734,9 @@ const __wbindgen_enum_GpuVertexFormat = ["uint8", "uint8x2", "uint8x4", "sint8",
 
 
 const __wbindgen_enum_GpuVertexStepMode = ["vertex", "instance"];
+const AccuracyFinalization = (typeof FinalizationRegistry === 'undefined')
+    ? { register: () => {}, unregister: () => {} }
+    : new FinalizationRegistry(ptr => wasm.__wbg_accuracy_free(ptr, 1));
 const PlannedFinalization = (typeof FinalizationRegistry === 'undefined')
     ? { register: () => {}, unregister: () => {} }
     : new FinalizationRegistry(ptr => wasm.__wbg_planned_free(ptr, 1));

@@ -1,14 +1,15 @@
 // The page: the job form, planning in a Web Worker (progress, cancel), the 3-D view, the report
 // and the downloads. Planning never runs on this thread, so the page stays responsive; a new
 // edit or Cancel terminates the worker and starts a fresh one. The page's state is mirrored on
-// `document.body.dataset.state` ("loading", "planning", "done", "error", "cancelled") and
-// `window.spiralcam` (plans started and finished, the report, the backend) for the browser tests.
+// `document.body.dataset.state` ("loading", "planning", "done", "analysing", "analysed", "error",
+// "cancelled") and `window.spiralcam` (plans started and finished, the report, the accuracy
+// analysis, the backend) for the browser tests.
 
 import init, { Viewer, default_job, colormap_css, colormap_stops, version } from '../pkg/spiralcam_web.js';
 import { JobForm } from './form.js';
 
 const $ = (id) => document.getElementById(id);
-const status = (window.spiralcam = { state: 'loading', backend: null, report: null, started: 0, plans: 0, error: null });
+const status = (window.spiralcam = { state: 'loading', backend: null, report: null, analysis: null, started: 0, plans: 0, error: null });
 
 function setState(s) {
   status.state = s;
@@ -175,6 +176,36 @@ function showMaps(maps, stops) {
   }
 }
 
+/** The accuracy panel: linearization error and predicted form, figures and maps. */
+function showAnalysis(m, stops) {
+  const rows = [];
+  if (m) {
+    const lin = m.report.linearization;
+    const form = m.report.predicted_form;
+    rows.push(
+      ['Linearization PV', `${fmt(lin.pv_um, 4)} µm over ${fmt(lin.segments, 0)} segments`],
+      ['Largest overcut between points', `${fmt(lin.max_overcut_um, 4)} µm at ρ ${fmt(lin.worst_at.rho_mm, 3)} mm, θ ${fmt(lin.worst_at.theta_deg, 1)}°`],
+      ['Largest undercut between points', `${fmt(lin.max_undercut_um, 4)} µm`],
+      ['Cusp height along the feed', `${fmt(form.cusp_height_um, 4)} µm`],
+      ['Predicted form error', `PV ${fmt(form.pv_um, 4)} µm, RMS ${fmt(form.rms_um, 4)} µm`],
+      ['Predicted overcut', `${fmt(form.max_overcut_um, 4)} µm`],
+    );
+  }
+  $('analysis-table').replaceChildren(...rows.map(([k, v]) => {
+    const tr = document.createElement('tr');
+    const td = Object.assign(document.createElement('td'), { textContent: v });
+    td.dataset.key = k;
+    tr.append(Object.assign(document.createElement('th'), { textContent: k }), td);
+    return tr;
+  }));
+  $('analysis-maps').hidden = !m;
+  if (!m) return;
+  for (const [name, values] of [['linearization', m.linearization], ['form', m.form]]) {
+    const [lo, hi] = drawMap($(`map-${name}`), values, m.size, stops);
+    $(`map-${name}-range`).textContent = `${fmt(lo, 4)} … ${fmt(hi, 4)} µm`;
+  }
+}
+
 /** The colour legend beside the view. */
 function showLegend(zMin, zMax, exaggeration, revolutionStep) {
   const ticks = $('legend-ticks');
@@ -247,7 +278,7 @@ async function main() {
   $('version').textContent = `v${version()}`;
   $('legend-bar').style.background = colormap_css();
   const stops = colormap_stops();
-  for (const bar of document.querySelectorAll('#maps .bar')) bar.style.background = colormap_css().replace('to top', 'to right');
+  for (const bar of document.querySelectorAll('.maps .bar')) bar.style.background = colormap_css().replace('to top', 'to right');
 
   const canvas = $('view');
   let viewer = null;
@@ -290,7 +321,7 @@ async function main() {
   const worker = new PlannerWorker((kind, done, total) => {
     progress.max = total;
     progress.value = done;
-    const what = { plan: 'planning', nc: 'writing NC', csv: 'writing CSV' }[kind];
+    const what = { plan: 'planning', nc: 'writing NC', csv: 'writing CSV', analyse: 'analysing' }[kind];
     progressText.textContent = `${what}: ${Math.round((100 * done) / Math.max(total, 1))} % (${fmt(done, 0)} / ${fmt(total, 0)} points)`;
   });
 
@@ -323,6 +354,7 @@ async function main() {
       status.plans += 1;
       showReport(m.report, job);
       showMaps(m.maps, stops);
+      showAnalysis(null, stops);
       $('plan-time').textContent = `planned in ${fmt((performance.now() - started) / 1000, 2)} s`;
       if (viewer) {
         viewer.set_surface(m.positions, m.normals, m.indices, m.zMin, m.zMax);
@@ -362,6 +394,26 @@ async function main() {
   };
 
   $('cancel').addEventListener('click', () => worker.cancel());
+  const analyse = async () => {
+    if (!planned) return;
+    generation++;
+    setState('analysing');
+    busy(true);
+    try {
+      const started = performance.now();
+      const m = await worker.run('analyse', planned.job);
+      showAnalysis(m, stops);
+      $('plan-time').textContent = `analysed in ${fmt((performance.now() - started) / 1000, 2)} s`;
+      status.analysis = m.report;
+      setState('analysed');
+    } catch (e) {
+      if (!e.cancelled) showFailure(e);
+      else setState('cancelled');
+    } finally {
+      busy(false);
+    }
+  };
+  $('analyse').addEventListener('click', analyse);
   $('download-nc').addEventListener('click', () => save('nc'));
   $('download-csv').addEventListener('click', () => save('csv'));
   $('download-job').addEventListener('click', () => {

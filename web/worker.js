@@ -1,8 +1,9 @@
 // The planning worker: loads the wasm module once and answers {id, kind, job} messages with
-// progress messages and one result ({kind: "planned" | "bytes"}) or {kind: "error", message}.
+// progress messages and one result ({kind: "planned" | "analysed" | "bytes"}) or
+// {kind: "error", message}.
 // Typed arrays are transferred, not copied.
 
-import init, { plan, nc_program, csv_table, power_maps } from '../pkg/spiralcam_web.js';
+import init, { analyse, plan, nc_program, csv_table, power_maps } from '../pkg/spiralcam_web.js';
 
 /** Samples per side of the power maps. */
 const MAP_SIZE = 161;
@@ -38,6 +39,13 @@ self.onmessage = async (e) => {
         transfer.push(m.maps.mean.buffer, m.maps.cylinder.buffer);
       }
       self.postMessage(m, transfer);
+    } else if (kind === 'analyse') {
+      const a = analyse(job, MAP_SIZE, progress);
+      const m = {
+        id, kind: 'analysed', report: JSON.parse(a.report), size: a.size, linearization: a.linearization_um, form: a.form_error_um,
+      };
+      a.free();
+      self.postMessage(m, [m.linearization.buffer, m.form.buffer]);
     } else {
       const bytes = kind === 'nc' ? nc_program(job, progress) : csv_table(job, progress);
       self.postMessage({ id, kind: 'bytes', bytes }, [bytes.buffer]);

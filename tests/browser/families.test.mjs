@@ -1,7 +1,7 @@
 // Every surface family through the page's form (WebGL2): choosing a family plans its defaults
-// without an error, the data families plan from files chosen in the page, the scattered form
-// drops the RBF options when another interpolator is chosen, and the progressive-lens preset
-// shows its power maps.
+// without an error, the accuracy analysis shows its figures and maps, the data families plan
+// from files chosen in the page, the scattered form drops the RBF options when another
+// interpolator is chosen, and the progressive-lens preset shows its power maps.
 
 import { after, before, describe, test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -72,6 +72,22 @@ describe('surface families on the page', () => {
       assert.equal((await currentJob()).surface.type, family);
     }
     assert.deepEqual(errors, []);
+  });
+
+  test('the accuracy analysis shows its figures and both maps', async () => {
+    await replan(() => page.selectOption('[data-field="surface.type"]', 'sinusoid'));
+    const points = await page.evaluate(() => window.spiralcam.report.points);
+    await page.click('#analyse');
+    await waitForState(page, ['analysed']);
+    const a = await page.evaluate(() => window.spiralcam.analysis);
+    assert.equal(a.linearization.segments, points - 1);
+    assert.ok(a.linearization.pv_um > 0 && a.predicted_form.cusp_height_um > 0, JSON.stringify(a));
+    assert.equal(await page.locator('#analysis-maps').isVisible(), true);
+    assert.match(await page.textContent('[data-key="Cusp height along the feed"]'), /µm/);
+    assert.match(await page.textContent('#map-form-range'), /µm/);
+    // A new plan clears the analysis of the old one.
+    await setField(page, 'strategy.feed_mm_per_rev', '0.02');
+    assert.equal(await page.locator('#analysis-maps').isVisible(), false);
   });
 
   test('a STEP face chosen in the page plans', async () => {

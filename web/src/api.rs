@@ -11,10 +11,12 @@
 //! program and the CSV are produced on demand ([`nc_program`], [`csv_table`]) by planning again,
 //! which is deterministic, so memory stays flat however many points the path has.
 
+use spiralcam::analysis::Analysis;
 use spiralcam::display::{DisplayPath, SurfaceMesh};
 use spiralcam::job::Job;
 use spiralcam::plan::{Planner, Progress, Sinks};
 use spiralcam::power_map::PowerMap;
+use spiralcam::raster::Raster;
 use spiralcam::surface::{PartDisc, SurfaceSpec};
 use std::ops::ControlFlow;
 use wasm_bindgen::prelude::*;
@@ -188,6 +190,58 @@ fn output_file(
         .run(sinks(&mut out), &mut reporter(progress))
         .map_err(|e| JsError::new(&e.to_string()))?;
     Ok(out)
+}
+
+/// The accuracy analysis of a job's path, for the page's accuracy panel.
+#[wasm_bindgen]
+pub struct Accuracy {
+    analysis: Analysis,
+}
+
+/// A map's values as f32 (NaN where there is none), row by row from −y to +y.
+fn map_values(map: &Raster) -> Vec<f32> {
+    map.values.iter().map(|&v| v as f32).collect()
+}
+
+#[wasm_bindgen]
+impl Accuracy {
+    /// The figures as JSON (see `spiralcam::analysis::Analysis`).
+    #[wasm_bindgen(getter)]
+    pub fn report(&self) -> String {
+        self.analysis.to_json()
+    }
+
+    /// Samples per side of both maps.
+    #[wasm_bindgen(getter)]
+    pub fn size(&self) -> usize {
+        self.analysis.linearization_map().size
+    }
+
+    /// Signed linearization error, µm (negative: overcut).
+    #[wasm_bindgen(getter)]
+    pub fn linearization_um(&self) -> Vec<f32> {
+        map_values(self.analysis.linearization_map())
+    }
+
+    /// Predicted form error, µm (positive: material left); NaN without a prediction.
+    #[wasm_bindgen(getter)]
+    pub fn form_error_um(&self) -> Vec<f32> {
+        map_values(&self.analysis.form_map())
+    }
+}
+
+/// Plans `job` and analyses its accuracy (linearization error, predicted form) with maps of
+/// `size` × `size` samples, the same figures `spiralcam analyse` prints.
+#[wasm_bindgen]
+pub fn analyse(
+    job: JsValue,
+    size: usize,
+    progress: &js_sys::Function,
+) -> Result<Accuracy, JsError> {
+    let planner = read_job(job)?;
+    let analysis = Analysis::run(&planner, size, &mut reporter(progress))
+        .map_err(|e| JsError::new(&e.to_string()))?;
+    Ok(Accuracy { analysis })
 }
 
 /// Mean-power and cylinder maps of a progressive lens, for the page's map panel.

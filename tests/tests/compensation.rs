@@ -17,7 +17,10 @@
 
 mod common;
 
-use common::{TOUCH, arc_range, check_gap, check_planned_path, config, dense_gap};
+use common::{
+    RandomSurface, TOUCH, arc_range, check_gap, check_planned_path, config, dense_gap,
+    random_asphere, random_sinusoid, random_xy_polynomial,
+};
 use proptest::prelude::*;
 use spiralcam::compensate::{NoseCompensator, ToolSpec};
 use spiralcam::surface::{Surface, SurfaceSpec};
@@ -64,80 +67,14 @@ impl Case {
     }
 }
 
-fn asphere() -> impl Strategy<Value = Case> {
-    (
-        prop_oneof![2.0..50.0f64, -50.0..-2.0f64],
-        -2.0..1.0f64,
-        -1.0..1.0f64,
-        -1.0..1.0f64,
-        0.5..5.0f64,
-    )
-        .prop_map(|(radius, conic, a4, a6, part)| {
-            let c = 1.0 / radius;
-            let p = (1.0 + conic) * c * c;
-            let rim = if p > 0.0 { (1.0 / p).sqrt() } else { f64::INFINITY };
-            let part_radius = part.min(0.9 * rim);
-            // Terms of at most 5 µm each at the part edge.
-            let a4 = a4 * 5e-3 / part_radius.powi(4);
-            let a6 = a6 * 5e-3 / part_radius.powi(6);
-            Case {
-                json: format!(
-                    r#"{{"type":"asphere","radius_mm":{radius},"conic":{conic},"coefficients":[{a4},{a6}]}}"#
-                ),
-                part_radius,
-                lenslets: None,
-                smooth: true,
-            }
-        })
-}
-
-fn xy_polynomial() -> impl Strategy<Value = Case> {
-    let term = (0u32..=6).prop_flat_map(|i| (Just(i), 0u32..=(6 - i), -5e-3..5e-3f64));
-    (
-        prop_oneof![20.0..200.0f64, -200.0..-20.0f64],
-        1.0..5.0f64,
-        prop::collection::vec(term, 1..8),
-    )
-        .prop_map(|(radius, part_radius, raw)| {
-            let mut terms: Vec<(u32, u32, f64)> = Vec::new();
-            for t in raw {
-                if !terms.iter().any(|u| u.0 == t.0 && u.1 == t.1) {
-                    terms.push(t);
-                }
-            }
-            let terms: Vec<String> = terms
-                .iter()
-                .map(|(x, y, c)| format!(r#"{{"x":{x},"y":{y},"coefficient_mm":{c}}}"#))
-                .collect();
-            Case {
-                json: format!(
-                    r#"{{"type":"xy_polynomial","base":{{"radius_mm":{radius}}},"norm_radius_mm":{part_radius},"terms":[{}]}}"#,
-                    terms.join(",")
-                ),
-                part_radius,
-                lenslets: None,
-                smooth: true,
-            }
-        })
-}
-
-fn sinusoid() -> impl Strategy<Value = Case> {
-    (
-        1e-4..5e-3f64,
-        0.2..3.0f64,
-        0.2..3.0f64,
-        0.0..360.0f64,
-        0.0..360.0f64,
-        1.0..5.0f64,
-    )
-        .prop_map(|(a, lx, ly, px, py, part_radius)| Case {
-            json: format!(
-                r#"{{"type":"sinusoid","amplitude_mm":{a},"wavelength_x_mm":{lx},"wavelength_y_mm":{ly},"phase_x_deg":{px},"phase_y_deg":{py}}}"#
-            ),
-            part_radius,
-            lenslets: None,
-            smooth: true,
-        })
+/// A common random smooth surface as a case.
+fn smooth(s: RandomSurface) -> Case {
+    Case {
+        json: s.json,
+        part_radius: s.part_radius,
+        lenslets: None,
+        smooth: true,
+    }
 }
 
 /// Lenslet centres with |c| + a/2 ≤ part radius, listed from the lattice definition.
@@ -189,7 +126,12 @@ fn lens_array() -> impl Strategy<Value = Case> {
 }
 
 fn any_case() -> impl Strategy<Value = Case> {
-    prop_oneof![asphere(), xy_polynomial(), sinusoid(), lens_array()]
+    prop_oneof![
+        random_asphere(0.9).prop_map(smooth),
+        random_xy_polynomial().prop_map(smooth),
+        random_sinusoid(0.2..3.0, 1.0..5.0).prop_map(smooth),
+        lens_array()
+    ]
 }
 
 /// Nose radius 0.01…1 mm (log-uniform) and included angle, degrees.

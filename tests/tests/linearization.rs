@@ -34,7 +34,7 @@
 
 mod common;
 
-use common::config;
+use common::{RandomSurface, config, random_asphere, random_sinusoid, random_xy_polynomial};
 use proptest::prelude::*;
 use spiralcam::job::Job;
 use spiralcam::linearization::{
@@ -186,88 +186,23 @@ struct Case {
     max_r: f64,
 }
 
-fn asphere() -> impl Strategy<Value = Case> {
-    (
-        prop_oneof![2.0..50.0f64, -50.0..-2.0f64],
-        -2.0..1.0f64,
-        -1.0..1.0f64,
-        -1.0..1.0f64,
-        0.5..5.0f64,
-    )
-        .prop_map(|(radius, conic, a4, a6, part)| {
-            let c = 1.0 / radius;
-            let p = (1.0 + conic) * c * c;
-            let rim = if p > 0.0 { (1.0 / p).sqrt() } else { f64::INFINITY };
-            let part_radius = part.min(0.8 * rim);
-            // Terms of at most 5 µm each at the part edge.
-            let a4 = a4 * 5e-3 / part_radius.powi(4);
-            let a6 = a6 * 5e-3 / part_radius.powi(6);
-            Case {
-                json: format!(
-                    r#"{{"type":"asphere","radius_mm":{radius},"conic":{conic},"coefficients":[{a4},{a6}]}}"#
-                ),
-                part_radius,
-                max_r: 0.5_f64.min(0.25 * radius.abs()),
-            }
-        })
-}
-
-fn xy_polynomial() -> impl Strategy<Value = Case> {
-    let term = (0u32..=6).prop_flat_map(|i| (Just(i), 0u32..=(6 - i), -5e-3..5e-3f64));
-    (
-        prop_oneof![20.0..200.0f64, -200.0..-20.0f64],
-        1.0..5.0f64,
-        prop::collection::vec(term, 1..8),
-    )
-        .prop_map(|(radius, part_radius, raw)| {
-            let mut terms: Vec<(u32, u32, f64)> = Vec::new();
-            for t in raw {
-                if !terms.iter().any(|u| u.0 == t.0 && u.1 == t.1) {
-                    terms.push(t);
-                }
-            }
-            // |f″| of each term ≤ |coefficient|·36/norm² at most.
-            let curvature: f64 = terms.iter().map(|t| t.2.abs() * 36.0).sum::<f64>()
-                / (part_radius * part_radius)
-                + 1.0 / radius.abs();
-            let terms: Vec<String> = terms
-                .iter()
-                .map(|(x, y, c)| format!(r#"{{"x":{x},"y":{y},"coefficient_mm":{c}}}"#))
-                .collect();
-            Case {
-                json: format!(
-                    r#"{{"type":"xy_polynomial","base":{{"radius_mm":{radius}}},"norm_radius_mm":{part_radius},"terms":[{}]}}"#,
-                    terms.join(",")
-                ),
-                part_radius,
-                max_r: 0.5_f64.min(0.5 / curvature),
-            }
-        })
-}
-
-fn sinusoid() -> impl Strategy<Value = Case> {
-    (
-        1e-4..5e-3f64,
-        0.5..3.0f64,
-        0.5..3.0f64,
-        0.0..360.0f64,
-        0.0..360.0f64,
-        1.0..4.0f64,
-    )
-        .prop_map(|(a, lx, ly, px, py, part_radius)| {
-            let k2 = (2.0 * PI / lx).powi(2) + (2.0 * PI / ly).powi(2);
-            Case {
-                json: format!(
-                    r#"{{"type":"sinusoid","amplitude_mm":{a},"wavelength_x_mm":{lx},"wavelength_y_mm":{ly},"phase_x_deg":{px},"phase_y_deg":{py}}}"#
-                ),
-                part_radius,
-                max_r: 0.5_f64.min(0.5 / (a * k2)),
-            }
-        })
+/// A common random surface with nose radii up to half its smallest radius of curvature (0.5 mm
+/// at most).
+fn case(s: RandomSurface) -> Case {
+    Case {
+        json: s.json,
+        part_radius: s.part_radius,
+        max_r: 0.5_f64.min(0.5 / s.curvature),
+    }
 }
 
 fn any_case() -> impl Strategy<Value = Case> {
-    prop_oneof![asphere(), xy_polynomial(), sinusoid()]
+    prop_oneof![
+        random_asphere(0.8),
+        random_xy_polynomial(),
+        random_sinusoid(0.5..3.0, 1.0..4.0)
+    ]
+    .prop_map(case)
 }
 
 /// A planner for a case: nose radius `r_frac·max_r` (0 when `r_frac` is 0), `points_per_rev`

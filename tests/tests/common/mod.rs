@@ -30,6 +30,7 @@ use spiralcam::field::FieldError;
 use spiralcam::job::Job;
 use spiralcam::plan::Planner;
 use spiralcam::surface::{Local, Surface, SurfaceSpec};
+use std::f64::consts::TAU;
 
 /// Finite-difference step, mm.
 pub const H: f64 = 1e-5;
@@ -394,4 +395,107 @@ pub fn check_example_jobs(jobs: &[(&str, &str)]) {
         let points = planner.spiral().point_count_hint();
         assert!(points < 1_000_000, "{file}: {points} points");
     }
+}
+
+/// A random smooth surface for property tests: its JSON, the part radius, and a bound on the
+/// curvature |f″| of its sections, 1/mm (for choosing nose radii that keep the compensated
+/// height smooth).
+#[derive(Debug, Clone)]
+pub struct RandomSurface {
+    /// The surface spec.
+    pub json: String,
+    /// Part radius, mm.
+    pub part_radius: f64,
+    /// Bound on |f″|, 1/mm.
+    pub curvature: f64,
+}
+
+/// An even asphere (|R| 2…50 mm, conic −2…1, A4 and A6 of at most 5 µm each at the edge) on a
+/// part of radius 0.5…5 mm cut at `rim_fraction` of the conic's rim. Its curvature bound is
+/// 2/|R| (a conic's section curvature `c/(1 − (1 + k)c²ρ²)^{3/2}` stays below 2c inside 0.9 of
+/// the rim for these conics, and the terms add little).
+pub fn random_asphere(rim_fraction: f64) -> impl Strategy<Value = RandomSurface> {
+    (
+        prop_oneof![2.0..50.0f64, -50.0..-2.0f64],
+        -2.0..1.0f64,
+        -1.0..1.0f64,
+        -1.0..1.0f64,
+        0.5..5.0f64,
+    )
+        .prop_map(move |(radius, conic, a4, a6, part)| {
+            let c = 1.0 / radius;
+            let p = (1.0 + conic) * c * c;
+            let rim = if p > 0.0 { (1.0 / p).sqrt() } else { f64::INFINITY };
+            let part_radius = part.min(rim_fraction * rim);
+            // Terms of at most 5 µm each at the part edge.
+            let a4 = a4 * 5e-3 / part_radius.powi(4);
+            let a6 = a6 * 5e-3 / part_radius.powi(6);
+            RandomSurface {
+                json: format!(
+                    r#"{{"type":"asphere","radius_mm":{radius},"conic":{conic},"coefficients":[{a4},{a6}]}}"#
+                ),
+                part_radius,
+                curvature: 2.0 / radius.abs(),
+            }
+        })
+}
+
+/// An XY polynomial of up to 7 terms of degree ≤ 6 (|c| ≤ 5 µm) on a sphere of |R| 20…200 mm,
+/// normalised to the part radius 1…5 mm. Each term's |f″| is at most |c|·36/N².
+pub fn random_xy_polynomial() -> impl Strategy<Value = RandomSurface> {
+    let term = (0u32..=6).prop_flat_map(|i| (Just(i), 0u32..=(6 - i), -5e-3..5e-3f64));
+    (
+        prop_oneof![20.0..200.0f64, -200.0..-20.0f64],
+        1.0..5.0f64,
+        prop::collection::vec(term, 1..8),
+    )
+        .prop_map(|(radius, part_radius, raw)| {
+            let mut terms: Vec<(u32, u32, f64)> = Vec::new();
+            for t in raw {
+                if !terms.iter().any(|u| u.0 == t.0 && u.1 == t.1) {
+                    terms.push(t);
+                }
+            }
+            let curvature: f64 = terms.iter().map(|t| t.2.abs() * 36.0).sum::<f64>()
+                / (part_radius * part_radius)
+                + 1.0 / radius.abs();
+            let terms: Vec<String> = terms
+                .iter()
+                .map(|(x, y, c)| format!(r#"{{"x":{x},"y":{y},"coefficient_mm":{c}}}"#))
+                .collect();
+            RandomSurface {
+                json: format!(
+                    r#"{{"type":"xy_polynomial","base":{{"radius_mm":{radius}}},"norm_radius_mm":{part_radius},"terms":[{}]}}"#,
+                    terms.join(",")
+                ),
+                part_radius,
+                curvature,
+            }
+        })
+}
+
+/// A sinusoidal grid (amplitude 0.1…5 µm, wavelengths from `wavelength`, any phases) on a part
+/// radius from `part`; |f″| ≤ A·(kx² + ky²).
+pub fn random_sinusoid(
+    wavelength: std::ops::Range<f64>,
+    part: std::ops::Range<f64>,
+) -> impl Strategy<Value = RandomSurface> {
+    (
+        1e-4..5e-3f64,
+        wavelength.clone(),
+        wavelength,
+        0.0..360.0f64,
+        0.0..360.0f64,
+        part,
+    )
+        .prop_map(|(a, lx, ly, px, py, part_radius)| {
+            let k2 = (TAU / lx).powi(2) + (TAU / ly).powi(2);
+            RandomSurface {
+                json: format!(
+                    r#"{{"type":"sinusoid","amplitude_mm":{a},"wavelength_x_mm":{lx},"wavelength_y_mm":{ly},"phase_x_deg":{px},"phase_y_deg":{py}}}"#
+                ),
+                part_radius,
+                curvature: a * k2,
+            }
+        })
 }

@@ -9,6 +9,10 @@ export class Accuracy {
     free(): void;
     [Symbol.dispose](): void;
     /**
+     * The clearance angle the surface requires, degrees.
+     */
+    readonly clearance_deg: Float32Array;
+    /**
      * Predicted form error, µm (positive: material left); NaN without a prediction.
      */
     readonly form_error_um: Float32Array;
@@ -220,6 +224,7 @@ export interface InitOutput {
     readonly __wbg_planned_free: (a: number, b: number) => void;
     readonly __wbg_powermaps_free: (a: number, b: number) => void;
     readonly __wbg_viewer_free: (a: number, b: number) => void;
+    readonly accuracy_clearance_deg: (a: number) => [number, number];
     readonly accuracy_form_error_um: (a: number) => [number, number];
     readonly accuracy_linearization_um: (a: number) => [number, number];
     readonly accuracy_report: (a: number) => [number, number];
@@ -260,8 +265,8 @@ export interface InitOutput {
     readonly viewer_z_exaggeration: (a: number) => number;
     readonly viewer_zoom: (a: number, b: number) => void;
     readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_43: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_44: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_45: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h6a9a4c771fb11aad: (a: number, b: number, c: any, d: any) => void;
     readonly wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__hc37317138617a3f5: (a: number, b: number, c: any) => void;

@@ -21,6 +21,16 @@ export class Accuracy {
         wasm.__wbg_accuracy_free(ptr, 0);
     }
     /**
+     * The clearance angle the surface requires, degrees.
+     * @returns {Float32Array}
+     */
+    get clearance_deg() {
+        const ret = wasm.accuracy_clearance_deg(this.__wbg_ptr);
+        var v1 = getArrayF32FromWasm0(ret[0], ret[1]).slice();
+        wasm.__wbindgen_free(ret[0], ret[1] * 4, 4);
+        return v1;
+    }
+    /**
      * Predicted form error, µm (positive: material left); NaN without a prediction.
      * @returns {Float32Array}
      */
@@ -2549,12 +2559,12 @@ function __wbg_get_imports() {
         },
         __wbindgen_generic_0000000000000004: function(arg0, arg1) {
             // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("any")], shim_idx: 195, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_43);
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_44);
             return ret;
         },
         __wbindgen_generic_0000000000000005: function(arg0, arg1) {
             // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("undefined")], shim_idx: 195, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_44);
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_45);
             return ret;
         },
         __wbindgen_generic_0000000000000006: function(arg0) {
@@ -2645,15 +2655,15 @@ function wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56(arg0, arg
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_43(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_43(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_44(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_44(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_44(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_44(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_45(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_45(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }

@@ -5,6 +5,7 @@ export const __wbg_accuracy_free: (a: number, b: number) => void;
 export const __wbg_planned_free: (a: number, b: number) => void;
 export const __wbg_powermaps_free: (a: number, b: number) => void;
 export const __wbg_viewer_free: (a: number, b: number) => void;
+export const accuracy_clearance_deg: (a: number) => [number, number];
 export const accuracy_form_error_um: (a: number) => [number, number];
 export const accuracy_linearization_um: (a: number) => [number, number];
 export const accuracy_report: (a: number) => [number, number];
@@ -45,8 +46,8 @@ export const viewer_set_surface: (a: number, b: number, c: number, d: number, e:
 export const viewer_z_exaggeration: (a: number) => number;
 export const viewer_zoom: (a: number, b: number) => void;
 export const wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56: (a: number, b: number, c: any) => [number, number];
-export const wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_43: (a: number, b: number, c: any) => [number, number];
 export const wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_44: (a: number, b: number, c: any) => [number, number];
+export const wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_45: (a: number, b: number, c: any) => [number, number];
 export const wasm_bindgen__convert__closures_____invoke__h6a9a4c771fb11aad: (a: number, b: number, c: any, d: any) => void;
 export const wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c: (a: number, b: number, c: any) => [number, number];
 export const wasm_bindgen__convert__closures_____invoke__hc37317138617a3f5: (a: number, b: number, c: any) => void;

@@ -176,7 +176,7 @@ function showMaps(maps, stops) {
   }
 }
 
-/** The accuracy panel: linearization error and predicted form, figures and maps. */
+/** The accuracy panel: linearization error, predicted form and tool angles, figures and maps. */
 function showAnalysis(m, stops) {
   const rows = [];
   if (m) {
@@ -190,6 +190,16 @@ function showAnalysis(m, stops) {
       ['Predicted form error', `PV ${fmt(form.pv_um, 4)} µm, RMS ${fmt(form.rms_um, 4)} µm`],
       ['Predicted overcut', `${fmt(form.max_overcut_um, 4)} µm`],
     );
+    const tool = m.report.tool_geometry;
+    const at = (c) => `at ρ ${fmt(c.at.rho_mm, 3)} mm, θ ${fmt(c.at.theta_deg, 1)}°`;
+    rows.push(
+      ['Clearance needed', `${fmt(tool.critical_clearance.deg, 3)}° ${at(tool.critical_clearance)}`],
+      ['Rake limit', `${fmt(tool.critical_rake.deg, 3)}° ${at(tool.critical_rake)}`],
+      ['Included angle needed', `${fmt(tool.critical_included_angle_deg, 3)}°`],
+      ['Clearance interferences', fmt(tool.clearance_interferences, 0)],
+      ['Holder tilt', tool.holder_tilt_deg == null ? `none: ${tool.holder_tilt_note}` : `${fmt(tool.holder_tilt_deg, 3)}°`],
+      ['Tool verdict', tool.verdict],
+    );
   }
   $('analysis-table').replaceChildren(...rows.map(([k, v]) => {
     const tr = document.createElement('tr');
@@ -200,9 +210,9 @@ function showAnalysis(m, stops) {
   }));
   $('analysis-maps').hidden = !m;
   if (!m) return;
-  for (const [name, values] of [['linearization', m.linearization], ['form', m.form]]) {
+  for (const [name, values, unit] of [['linearization', m.linearization, 'µm'], ['form', m.form, 'µm'], ['clearance', m.clearance, '°']]) {
     const [lo, hi] = drawMap($(`map-${name}`), values, m.size, stops);
-    $(`map-${name}-range`).textContent = `${fmt(lo, 4)} … ${fmt(hi, 4)} µm`;
+    $(`map-${name}-range`).textContent = `${fmt(lo, 4)} … ${fmt(hi, 4)} ${unit}`;
   }
 }
 

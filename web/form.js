@@ -245,6 +245,8 @@ const SECTIONS = [
   ['Tool', [
     { path: 'tool.nose_radius_mm', label: 'Nose radius r', unit: 'mm', hint: '≥ 0' },
     { path: 'tool.included_angle_deg', label: 'Included angle', unit: '°', hint: '(0, 180]' },
+    { path: 'tool.rake_deg', label: 'Rake angle', unit: '°', hint: '[−80, 80], blank: 0', optional: true },
+    { path: 'tool.clearance_deg', label: 'Front clearance', unit: '°', hint: '[0, 80], blank: 10', optional: true },
   ]],
   ['Machine', [{ path: 'machine.spindle_rpm', label: 'Spindle speed', unit: 'rpm', hint: '> 0' }]],
   ['Strategy', [

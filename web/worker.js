@@ -42,10 +42,16 @@ self.onmessage = async (e) => {
     } else if (kind === 'analyse') {
       const a = analyse(job, MAP_SIZE, progress);
       const m = {
-        id, kind: 'analysed', report: JSON.parse(a.report), size: a.size, linearization: a.linearization_um, form: a.form_error_um,
+        id,
+        kind: 'analysed',
+        report: JSON.parse(a.report),
+        size: a.size,
+        linearization: a.linearization_um,
+        form: a.form_error_um,
+        clearance: a.clearance_deg,
       };
       a.free();
-      self.postMessage(m, [m.linearization.buffer, m.form.buffer]);
+      self.postMessage(m, [m.linearization.buffer, m.form.buffer, m.clearance.buffer]);
     } else {
       const bytes = kind === 'nc' ? nc_program(job, progress) : csv_table(job, progress);
       self.postMessage({ id, kind: 'bytes', bytes }, [bytes.buffer]);

@@ -1,6 +1,7 @@
 //! The accuracy analysis of a planned path, in one pass over it: the cutting linearization
-//! error between NC points ([`crate::linearization`], paper 000) and the machined form predicted
-//! from the nose swept along the path ([`crate::predicted_form`]). The command line prints it
+//! error between NC points ([`crate::linearization`], paper 000), the machined form predicted
+//! from the nose swept along the path ([`crate::predicted_form`]) and the tool angles the
+//! surface asks for ([`crate::tool_geometry`], paper 000). The command line prints it
 //! as JSON (`spiralcam analyse`); the page shows its figures and both maps.
 //!
 //! The two measure different things: the linearization error is found at its extremes on every
@@ -14,6 +15,7 @@ use crate::linearization::{LinearizationCheck, LinearizationReport};
 use crate::plan::{PROGRESS_EVERY, PlanError, Planner, Progress};
 use crate::predicted_form::{FormPredictor, FormSettings, PredictedForm};
 use crate::raster::Raster;
+use crate::tool_geometry::{ToolGeometryCheck, ToolGeometryReport};
 use serde::Serialize;
 use std::ops::ControlFlow;
 
@@ -26,6 +28,8 @@ pub struct Analysis {
     pub linearization: LinearizationReport,
     /// The predicted machined form; `None` where it cannot be predicted (see `notes`).
     pub predicted_form: Option<PredictedForm>,
+    /// Critical tool angles, interference with the job's tool and the holder tilt that clears it.
+    pub tool_geometry: ToolGeometryReport,
     /// Why an analysis is missing.
     pub notes: Vec<String>,
 }
@@ -40,6 +44,8 @@ impl Analysis {
     ) -> Result<Self, PlanError> {
         let total = planner.spiral().point_count_hint();
         let mut linearization = LinearizationCheck::new(planner, map_size);
+        let angles = planner.job().tool.angles().map_err(|e| e.within("tool"))?;
+        let mut tool_geometry = ToolGeometryCheck::new(planner, &angles, map_size);
         let mut notes = Vec::new();
         let mut form = match FormPredictor::new(planner, &FormSettings::default(), map_size) {
             Ok(f) => Some(f),
@@ -53,6 +59,7 @@ impl Analysis {
         for p in planner.points() {
             let p = p?;
             linearization.add(planner, &p)?;
+            tool_geometry.add(planner, &p)?;
             if let Some(f) = form.as_mut() {
                 f.push(&p)?;
             }
@@ -67,6 +74,7 @@ impl Analysis {
             job: planner.job().name.clone(),
             linearization: linearization.finish(),
             predicted_form: form.map(FormPredictor::finish).transpose()?,
+            tool_geometry: tool_geometry.finish(),
             notes,
         })
     }
@@ -79,6 +87,11 @@ impl Analysis {
     /// The linearization error map, µm.
     pub fn linearization_map(&self) -> &Raster {
         &self.linearization.map
+    }
+
+    /// The clearance angle the surface requires, degrees.
+    pub fn clearance_map(&self) -> &Raster {
+        &self.tool_geometry.map
     }
 
     /// The predicted form error map, µm (all NaN without a prediction).

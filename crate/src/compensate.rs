@@ -25,6 +25,7 @@
 
 use crate::field::{FieldError, in_range, non_negative};
 use crate::surface::{Line, Surface, UndefinedError};
+use crate::tool_geometry::ToolAngles;
 use serde::{Deserialize, Serialize};
 
 /// The tool of a job.
@@ -37,10 +38,43 @@ pub struct ToolSpec {
     /// β/2 either side of the tool axis (−Z).
     #[serde(default = "default_included_angle")]
     pub included_angle_deg: f64,
+    /// Rake angle γ, degrees, in [−80, 80]; default 0° (a zero-rake diamond). Used by the tool
+    /// geometry check ([`crate::tool_geometry`]), not by the compensation.
+    #[serde(default)]
+    pub rake_deg: f64,
+    /// Front clearance angle α, degrees, in [0, 80]; default 10°. Used by the tool geometry
+    /// check, not by the compensation.
+    #[serde(default = "default_clearance")]
+    pub clearance_deg: f64,
 }
 
 fn default_included_angle() -> f64 {
     100.0
+}
+
+fn default_clearance() -> f64 {
+    ToolAngles::default().clearance_deg
+}
+
+impl ToolSpec {
+    /// A tool of nose radius `r` mm and the default angles (included 100°, rake 0°, clearance
+    /// 10°).
+    pub fn with_nose_radius(r: f64) -> Self {
+        Self {
+            nose_radius_mm: r,
+            included_angle_deg: default_included_angle(),
+            rake_deg: 0.0,
+            clearance_deg: default_clearance(),
+        }
+    }
+
+    /// The rake and clearance angles, checked (field names relative to the tool).
+    pub fn angles(&self) -> Result<ToolAngles, FieldError> {
+        Ok(ToolAngles {
+            rake_deg: in_range("rake_deg", self.rake_deg, -80.0, 80.0)?,
+            clearance_deg: in_range("clearance_deg", self.clearance_deg, 0.0, 80.0)?,
+        })
+    }
 }
 
 /// Where the nose touches the surface for one spiral point.
@@ -88,6 +122,7 @@ impl NoseCompensator {
         limit_radius_mm: f64,
     ) -> Result<Self, FieldError> {
         let r = non_negative("nose_radius_mm", tool.nose_radius_mm)?;
+        tool.angles()?;
         let beta = in_range("included_angle_deg", tool.included_angle_deg, 0.0, 180.0)?;
         if beta == 0.0 {
             return Err(FieldError::new(
@@ -380,6 +415,7 @@ mod tests {
         ToolSpec {
             nose_radius_mm: r,
             included_angle_deg: 100.0,
+            ..ToolSpec::with_nose_radius(0.0)
         }
     }
 
@@ -432,6 +468,7 @@ mod tests {
             &ToolSpec {
                 nose_radius_mm: 0.5,
                 included_angle_deg: 0.0,
+                ..ToolSpec::with_nose_radius(0.0)
             },
             1.0,
             5.0,
@@ -439,5 +476,25 @@ mod tests {
         assert_eq!(e.unwrap_err().field, "included_angle_deg");
         let e = NoseCompensator::new(&tool(-1.0), 1.0, 5.0);
         assert_eq!(e.unwrap_err().field, "nose_radius_mm");
+        for (rake, clearance, field, allowed) in [
+            (85.0, 10.0, "rake_deg", "must lie in [-80, 80]"),
+            (f64::NAN, 10.0, "rake_deg", "must lie in [-80, 80]"),
+            (0.0, -1.0, "clearance_deg", "must lie in [0, 80]"),
+        ] {
+            let t = ToolSpec {
+                rake_deg: rake,
+                clearance_deg: clearance,
+                ..tool(0.5)
+            };
+            let e = NoseCompensator::new(&t, 1.0, 5.0).unwrap_err();
+            assert_eq!((e.field.as_str(), e.allowed.as_str()), (field, allowed));
+        }
+        assert_eq!(
+            tool(0.5).angles().unwrap(),
+            ToolAngles {
+                rake_deg: 0.0,
+                clearance_deg: 10.0
+            }
+        );
     }
 }

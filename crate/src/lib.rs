@@ -24,3 +24,4 @@ pub mod reach;
 pub mod report;
 pub mod spiral;
 pub mod surface;
+pub mod tool_geometry;

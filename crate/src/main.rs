@@ -9,9 +9,9 @@
 //! `plan` streams the path into the files asked for (each written to `FILE.partial` and renamed
 //! when complete, so a failed run never leaves a truncated program) and prints the report as
 //! JSON on standard output unless `--report` names a file. `analyse` plans the job and reports its
-//! accuracy ([`spiralcam::analysis`]: linearization error, predicted form) as JSON, and with
-//! `--maps` writes both maps as `PREFIX-linearization.csv` and `PREFIX-form.csv`
-//! (`x_mm,y_mm,error_um`). `sag` prints sag, gradient and second
+//! accuracy ([`spiralcam::analysis`]: linearization error, predicted form, tool angles) as JSON, and with
+//! `--maps` writes its maps as `PREFIX-linearization.csv`, `PREFIX-form.csv` (`x_mm,y_mm,error_um`)
+//! and `PREFIX-clearance.csv` (`x_mm,y_mm,required_clearance_deg`). `sag` prints sag, gradient and second
 //! derivatives of the job's surface at each `x_mm,y_mm` row of a CSV file. Data files a job
 //! names by path (scattered points, STEP files) are read relative to the job file.
 
@@ -31,8 +31,9 @@ const USAGE: &str = "usage:
       plan the job; write the NC program, the point table (CSV) and the report (JSON,
       standard output when --report is not given)
   spiralcam analyse JOB.json [--report FILE] [--maps PREFIX]
-      the accuracy of the planned path: linearization error between NC points and the
-      predicted machined form (JSON); --maps writes both maps as PREFIX-*.csv
+      the accuracy of the planned path: linearization error between NC points, the
+      predicted machined form and the tool angles needed (JSON); --maps writes the maps
+      as PREFIX-*.csv
   spiralcam sag JOB.json --at POINTS.csv
       print z, gradient and second derivatives of the job's surface at each x_mm,y_mm row
   spiralcam --version";
@@ -220,8 +221,17 @@ fn analyse(args: &[String]) -> Result<(), Failure> {
             p.push(format!("-{what}.csv"));
             PathBuf::from(p)
         };
-        write_map(&name("linearization"), analysis.linearization_map())?;
-        write_map(&name("form"), &analysis.form_map())?;
+        write_map(
+            &name("linearization"),
+            analysis.linearization_map(),
+            "error_um",
+        )?;
+        write_map(&name("form"), &analysis.form_map(), "error_um")?;
+        write_map(
+            &name("clearance"),
+            analysis.clearance_map(),
+            "required_clearance_deg",
+        )?;
     }
     write_report(args.get("--report"), analysis.to_json() + "\n")
 }
@@ -229,11 +239,11 @@ fn analyse(args: &[String]) -> Result<(), Failure> {
 /// Samples per side of the maps `analyse --maps` writes.
 const MAP_SIZE: usize = 256;
 
-/// Writes the defined samples of `map` as `x_mm,y_mm,error_um` rows.
-fn write_map(path: &Path, map: &Raster) -> Result<(), Failure> {
+/// Writes the defined samples of `map` as `x_mm,y_mm,<value>` rows.
+fn write_map(path: &Path, map: &Raster, value: &str) -> Result<(), Failure> {
     let mut out = Output::create(path)?;
     let mut write = || -> std::io::Result<()> {
-        writeln!(out.writer, "x_mm,y_mm,error_um")?;
+        writeln!(out.writer, "x_mm,y_mm,{value}")?;
         for j in 0..map.size {
             for i in 0..map.size {
                 let v = map.values[j * map.size + i];

@@ -549,6 +549,7 @@ mod tests {
             &ToolSpec {
                 nose_radius_mm: r,
                 included_angle_deg: 100.0,
+                ..ToolSpec::with_nose_radius(0.0)
             },
             0.5,
             4.0,

@@ -262,21 +262,27 @@ fn analyse_prints_the_library_figures_and_writes_the_maps() {
     let maps = [
         (
             "acc-linearization.csv",
+            "error_um",
             analysis.linearization_map().clone(),
         ),
-        ("acc-form.csv", analysis.form_map()),
+        ("acc-form.csv", "error_um", analysis.form_map()),
+        (
+            "acc-clearance.csv",
+            "required_clearance_deg",
+            analysis.clearance_map().clone(),
+        ),
     ];
-    for (file, map) in maps {
+    for (file, value, map) in maps {
         let text = std::fs::read_to_string(dir.path(file)).unwrap();
         let mut lines = text.lines();
-        assert_eq!(lines.next(), Some("x_mm,y_mm,error_um"));
+        assert_eq!(lines.next(), Some(format!("x_mm,y_mm,{value}").as_str()));
         let rows: Vec<Vec<f64>> = lines
             .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
             .collect();
         let defined = map.values.iter().filter(|v| !v.is_nan()).count();
         assert!(defined > 0, "{file}: empty map");
         assert_eq!(rows.len(), defined, "{file}");
-        // Each row is a defined sample at its position, printed to 1e-6 µm.
+        // Each row is a defined sample at its position, printed to 6 decimals.
         for r in &rows {
             let k = map.index_of(r[0], r[1]).unwrap();
             assert!((map.values[k] - r[2]).abs() <= 5e-7, "{file}: {r:?}");

@@ -74,7 +74,7 @@ describe('surface families on the page', () => {
     assert.deepEqual(errors, []);
   });
 
-  test('the accuracy analysis shows its figures and both maps', async () => {
+  test('the accuracy analysis shows its figures and maps', async () => {
     await replan(() => page.selectOption('[data-field="surface.type"]', 'sinusoid'));
     const points = await page.evaluate(() => window.spiralcam.report.points);
     await page.click('#analyse');
@@ -85,6 +85,10 @@ describe('surface families on the page', () => {
     assert.equal(await page.locator('#analysis-maps').isVisible(), true);
     assert.match(await page.textContent('[data-key="Cusp height along the feed"]'), /µm/);
     assert.match(await page.textContent('#map-form-range'), /µm/);
+    assert.match(await page.textContent('#map-clearance-range'), /°/);
+    assert.equal(a.tool_geometry.tool.clearance_deg, 10);
+    assert.ok(a.tool_geometry.verdict.length > 0);
+    assert.equal(await page.textContent('[data-key="Tool verdict"]'), a.tool_geometry.verdict);
     // A new plan clears the analysis of the old one.
     await setField(page, 'strategy.feed_mm_per_rev', '0.02');
     assert.equal(await page.locator('#analysis-maps').isVisible(), false);

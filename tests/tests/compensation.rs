@@ -235,7 +235,7 @@ proptest! {
     ) {
         let surface = case.surface();
         let nose = NoseCompensator::new(
-            &ToolSpec { nose_radius_mm: tool.0, included_angle_deg: tool.1 },
+            &ToolSpec { nose_radius_mm: tool.0, included_angle_deg: tool.1, ..ToolSpec::with_nose_radius(0.0) },
             surface.feature_length_mm(),
             case.part_radius,
         )
@@ -253,7 +253,7 @@ proptest! {
     ) {
         let surface = case.surface();
         let nose = NoseCompensator::new(
-            &ToolSpec { nose_radius_mm: tool.0, included_angle_deg: tool.1 },
+            &ToolSpec { nose_radius_mm: tool.0, included_angle_deg: tool.1, ..ToolSpec::with_nose_radius(0.0) },
             surface.feature_length_mm(),
             case.part_radius,
         )
@@ -270,7 +270,7 @@ proptest! {
     ) {
         let surface = case.surface();
         let nose = NoseCompensator::new(
-            &ToolSpec { nose_radius_mm: 0.0, included_angle_deg: 100.0 },
+            &ToolSpec { nose_radius_mm: 0.0, included_angle_deg: 100.0, ..ToolSpec::with_nose_radius(0.0) },
             surface.feature_length_mm(),
             case.part_radius,
         )
@@ -304,6 +304,7 @@ fn on_a_convex_sphere_the_centre_lies_on_the_offset_sphere() {
         &ToolSpec {
             nose_radius_mm: r,
             included_angle_deg: 100.0,
+            ..ToolSpec::with_nose_radius(0.0)
         },
         surface.feature_length_mm(),
         4.0,
@@ -348,6 +349,7 @@ fn a_nose_centred_over_land_beside_a_convex_lenslet_does_not_cut_it() {
         &ToolSpec {
             nose_radius_mm: tool.0,
             included_angle_deg: tool.1,
+            ..ToolSpec::with_nose_radius(0.0)
         },
         surface.feature_length_mm(),
         part_radius,
@@ -439,6 +441,7 @@ fn the_dense_check_detects_a_cut() {
         &ToolSpec {
             nose_radius_mm: 0.2,
             included_angle_deg: 100.0,
+            ..ToolSpec::with_nose_radius(0.0)
         },
         surface.feature_length_mm(),
         2.0,

@@ -28,6 +28,7 @@ fn nose(r: f64, beta: f64, s: &dyn Surface, part_radius: f64) -> NoseCompensator
         &ToolSpec {
             nose_radius_mm: r,
             included_angle_deg: beta,
+            ..ToolSpec::with_nose_radius(0.0)
         },
         s.feature_length_mm(),
         part_radius,

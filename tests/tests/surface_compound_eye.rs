@@ -531,6 +531,7 @@ fn the_nose_rests_on_the_spheres_of_the_preset() {
         &ToolSpec {
             nose_radius_mm: r,
             included_angle_deg: 100.0,
+            ..ToolSpec::with_nose_radius(0.0)
         },
         surface.feature_length_mm(),
         5.0,

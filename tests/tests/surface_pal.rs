@@ -341,6 +341,7 @@ fn the_dense_check_detects_a_cut() {
     let tool = ToolSpec {
         nose_radius_mm: 0.8,
         included_angle_deg: 100.0,
+        ..ToolSpec::with_nose_radius(0.0)
     };
     let nose = NoseCompensator::new(&tool, s.feature_length_mm(), 35.0).unwrap();
     let (rho, theta) = (17.3, 0.9f64);

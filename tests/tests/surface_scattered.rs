@@ -744,10 +744,7 @@ fn the_gouge_check_detects_a_cut_at_a_jump() {
     let samples = Samples::from_points(&points).unwrap();
     let f = build(&spec(Method::FourPointMean), samples.clone());
     let nose = spiralcam::compensate::NoseCompensator::new(
-        &spiralcam::compensate::ToolSpec {
-            nose_radius_mm: 0.1,
-            included_angle_deg: 100.0,
-        },
+        &spiralcam::compensate::ToolSpec::with_nose_radius(0.1),
         f.feature_length_mm(),
         0.55,
     )

@@ -223,6 +223,12 @@ impl Accuracy {
         map_values(self.analysis.linearization_map())
     }
 
+    /// The clearance angle the surface requires, degrees.
+    #[wasm_bindgen(getter)]
+    pub fn clearance_deg(&self) -> Vec<f32> {
+        map_values(self.analysis.clearance_map())
+    }
+
     /// Predicted form error, µm (positive: material left); NaN without a prediction.
     #[wasm_bindgen(getter)]
     pub fn form_error_um(&self) -> Vec<f32> {

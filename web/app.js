@@ -102,6 +102,14 @@ function showReport(report, job) {
     ['Arc-end contacts', fmt(report.arc_end_contacts, 0)],
     ['Unreachable zones', `${report.concave_zones.length}${report.shallow_concave_zones ? ` (+${report.shallow_concave_zones} below 0.1 nm)` : ''}`],
   ];
+  if (job.strategy.compensation === 'two_way') {
+    const loopAt = report.first_two_way_loop_at;
+    rows.push(
+      ['X reversals', fmt(report.x_reversals, 0)],
+      ['Largest X acceleration', `${fmt(report.max_x_acceleration_mm_s2, 4)} mm/s² at ρ ${fmt(report.max_x_acceleration_at.rho_mm, 3)} mm, θ ${fmt(report.max_x_acceleration_at.theta_deg, 1)}°`],
+      ['Two-way loops', loopAt ? `${fmt(report.two_way_loops, 0)} (${fmt(report.two_way_loop_points, 0)} points), first at ρ ${fmt(loopAt.rho_mm, 3)} mm` : '0'],
+    );
+  }
   const table = $('report-table');
   table.replaceChildren(...rows.map(([k, v]) => {
     const tr = document.createElement('tr');

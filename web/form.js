@@ -251,11 +251,13 @@ const SECTIONS = [
   ['Machine', [{ path: 'machine.spindle_rpm', label: 'Spindle speed', unit: 'rpm', hint: '> 0' }]],
   ['Strategy', [
     { path: 'strategy.feed_mm_per_rev', label: 'Feed f', unit: 'mm/rev', hint: '> 0' },
-    { path: 'strategy.sampling.type', label: 'Sampling', options: ['constant_angle', 'constant_arc'] },
+    { path: 'strategy.sampling.type', label: 'Sampling', options: ['constant_angle', 'constant_arc', 'hcaa', 'adaptive'], optionLabels: ['constant angle', 'constant arc', 'HCAA (paper 000)', 'adaptive per revolution'] },
+    { path: 'strategy.sampling.pv_tolerance_um', label: 'Linearization PV tolerance', unit: 'µm', hint: '> 0', when: 'hcaa adaptive' },
     { path: 'strategy.sampling.points_per_rev', label: 'Points per revolution', unit: '', hint: '3 … 1 000 000', when: 'constant_angle' },
     { path: 'strategy.sampling.arc_length_mm', label: 'Arc length ΔS', unit: 'mm', hint: '> 0', when: 'constant_arc' },
     { path: 'strategy.sampling.max_angle_step_deg', label: 'Largest angle step', unit: '°', hint: '(0, 90]', when: 'constant_arc' },
     { path: 'strategy.direction', label: 'Direction of θ', options: ['ccw', 'cw'] },
+    { path: 'strategy.compensation', label: 'Nose compensation', options: ['one_way', 'two_way'], optionLabels: ['one-way (Z only; X on the spiral)', 'two-way (along the normal; X moves)'] },
     { path: 'strategy.start_angle_deg', label: 'Start angle', unit: '°' },
     { path: 'strategy.outer_radius_mm', label: 'Outer radius', unit: 'mm', hint: 'blank: part radius', optional: true },
   ]],
@@ -582,9 +584,12 @@ export class JobForm {
     } else if (t.dataset.kind) {
       this.read(t);
       if (t.dataset.field === 'strategy.sampling.type') {
-        this.job.strategy.sampling = t.value === 'constant_angle'
-          ? { type: 'constant_angle', points_per_rev: 720 }
-          : { type: 'constant_arc', arc_length_mm: 0.02, max_angle_step_deg: 1 };
+        this.job.strategy.sampling = {
+          constant_angle: { type: 'constant_angle', points_per_rev: 720 },
+          constant_arc: { type: 'constant_arc', arc_length_mm: 0.02, max_angle_step_deg: 1 },
+          hcaa: { type: 'hcaa', pv_tolerance_um: 1 },
+          adaptive: { type: 'adaptive', pv_tolerance_um: 1 },
+        }[t.value];
         this.show(this.job);
       }
       this.updateVisibility();

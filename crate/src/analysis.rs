@@ -4,6 +4,8 @@
 //! surface asks for ([`crate::tool_geometry`], paper 000). The command line prints it
 //! as JSON (`spiralcam analyse`); the page shows its figures and both maps.
 //!
+//! All three assume one-way compensation (X on the spiral); a two-way job is refused.
+//!
 //! The two measure different things: the linearization error is found at its extremes on every
 //! segment; the predicted form samples the path where it crosses 360 half-planes through the
 //! axis, so it sees the linearization error only at those crossings (with constant-angle
@@ -11,6 +13,8 @@
 //! and adds what the linearization check leaves out: the cusps between passes and the nose's
 //! envelope.
 
+use crate::compensate::Compensation;
+use crate::field::FieldError;
 use crate::linearization::{LinearizationCheck, LinearizationReport};
 use crate::plan::{PROGRESS_EVERY, PlanError, Planner, Progress};
 use crate::predicted_form::{FormPredictor, FormSettings, PredictedForm};
@@ -42,6 +46,14 @@ impl Analysis {
         map_size: usize,
         progress: &mut dyn FnMut(Progress) -> ControlFlow<()>,
     ) -> Result<Self, PlanError> {
+        if planner.job().strategy.compensation == Compensation::TwoWay {
+            return Err(FieldError::new(
+                "strategy.compensation",
+                "two_way",
+                "the accuracy analysis covers one-way compensation only (X on the spiral)",
+            )
+            .into());
+        }
         let total = planner.spiral().point_count_hint();
         let mut linearization = LinearizationCheck::new(planner, map_size);
         let angles = planner.job().tool.angles().map_err(|e| e.within("tool"))?;
@@ -106,5 +118,24 @@ impl Analysis {
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::job::Job;
+
+    #[test]
+    fn a_two_way_job_is_refused_naming_the_field() {
+        let mut job = Job::default_job();
+        job.strategy.compensation = Compensation::TwoWay;
+        let planner = Planner::new(&job).unwrap();
+        let e = Analysis::run(&planner, 8, &mut |_| ControlFlow::Continue(())).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("strategy.compensation = two_way:"),
+            "{e}"
+        );
     }
 }

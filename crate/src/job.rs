@@ -4,7 +4,7 @@
 //! is an error rather than a silently ignored setting. [`Job::from_json`] parses and
 //! [`Job::validate`] checks every value against its range; both give errors that name the field.
 
-use crate::compensate::ToolSpec;
+use crate::compensate::{Compensation, ToolSpec};
 use crate::field::{FieldError, positive};
 use crate::nc::OutputSpec;
 use crate::spiral::{Direction, Sampling};
@@ -70,6 +70,10 @@ pub struct StrategySpec {
     /// Radius where the spiral starts, mm; default the part radius.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub outer_radius_mm: Option<f64>,
+    /// Tool nose compensation, `one_way` (default) or `two_way`
+    /// ([`crate::compensate::Compensation`]).
+    #[serde(default, skip_serializing_if = "Compensation::is_one_way")]
+    pub compensation: Compensation,
 }
 
 /// A job that cannot be read.

@@ -13,6 +13,7 @@ pub mod compensate;
 pub mod data_file;
 pub mod display;
 pub mod field;
+pub mod hcaa;
 pub mod job;
 pub mod linearization;
 pub mod nc;

@@ -5,7 +5,7 @@
 //! depend on the number of threads; only the display copy ([`crate::display::DisplayPath`])
 //! keeps points, decimated to a fixed budget.
 
-use crate::compensate::NoseCompensator;
+use crate::compensate::{Compensation, NoseCompensator};
 use crate::display::DisplayPath;
 use crate::field::FieldError;
 use crate::job::{Job, JobError};
@@ -133,19 +133,16 @@ impl Planner {
     pub fn new(job: &Job) -> Result<Self, PlanError> {
         job.validate()?;
         let surface = job.surface.build(job.part_radius_mm())?;
-        let st = &job.strategy;
-        let spiral = Spiral::new(
-            job.outer_radius_mm(),
-            st.feed_mm_per_rev,
-            &st.sampling,
-            st.direction,
-            st.start_angle_deg,
-        )
-        .map_err(|e| e.within("strategy"))?;
         // The material ends at the part edge, wherever the spiral starts.
         let nose =
             NoseCompensator::new(&job.tool, surface.feature_length_mm(), job.part_radius_mm())
                 .map_err(|e| e.within("tool"))?;
+        let spiral = crate::hcaa::spiral(
+            job.outer_radius_mm(),
+            &job.strategy,
+            surface.as_ref(),
+            &nose,
+        )?;
         Ok(Self {
             job: job.clone(),
             surface,
@@ -179,22 +176,44 @@ impl Planner {
         self.spiral
             .points()
             .enumerate()
-            .map(move |(i, sp)| self.path_point(i as u64, sp))
+            .map(move |(i, sp)| Ok(self.path_point(i as u64, sp)?.0))
     }
 
-    /// The compensated path point of the `index`-th spiral point.
-    fn path_point(&self, index: u64, sp: SpiralPoint) -> Result<PathPoint, UndefinedError> {
+    /// The compensated path point of the `index`-th spiral point, and whether the two-way
+    /// offset folds there (a loop; always false one-way). Two-way, `rho` and `theta` are the
+    /// nose centre's X and C ([`NoseCompensator::compensate_two_way`]).
+    fn path_point(&self, index: u64, sp: SpiralPoint) -> Result<(PathPoint, bool), UndefinedError> {
         let (s, c) = sp.theta.sin_cos();
+        if self.job.strategy.compensation == Compensation::TwoWay {
+            let t = self
+                .nose
+                .compensate_two_way(self.surface.as_ref(), sp.rho, c, s)?;
+            return Ok((
+                PathPoint {
+                    index,
+                    rho: t.x,
+                    theta: sp.theta + t.c_offset,
+                    z: t.z_tip,
+                    contact: t.contact,
+                    contact_angle: t.angle,
+                    at_arc_end: t.at_arc_end,
+                },
+                t.folds,
+            ));
+        }
         let contact = self.nose.compensate(self.surface.as_ref(), sp.rho, c, s)?;
-        Ok(PathPoint {
-            index,
-            rho: sp.rho,
-            theta: sp.theta,
-            z: contact.z_tip,
-            contact: [contact.rho * c, contact.rho * s, contact.z],
-            contact_angle: contact.angle,
-            at_arc_end: contact.at_arc_end,
-        })
+        Ok((
+            PathPoint {
+                index,
+                rho: sp.rho,
+                theta: sp.theta,
+                z: contact.z_tip,
+                contact: [contact.rho * c, contact.rho * s, contact.z],
+                contact_angle: contact.angle,
+                at_arc_end: contact.at_arc_end,
+            },
+            false,
+        ))
     }
 
     /// Compensates a batch of spiral points starting at path index `first` into `out`, in
@@ -204,14 +223,14 @@ impl Planner {
         &self,
         first: u64,
         input: &[SpiralPoint],
-        out: &mut Vec<PathPoint>,
+        out: &mut Vec<(PathPoint, bool)>,
     ) -> Result<(), UndefinedError> {
         out.clear();
-        out.resize(input.len(), PathPoint::default());
+        out.resize(input.len(), (PathPoint::default(), false));
         let chunk = input.len().div_ceil(workers()).max(1);
         let fill = |k: usize,
                     points: &[SpiralPoint],
-                    slots: &mut [PathPoint]|
+                    slots: &mut [(PathPoint, bool)]|
          -> Result<(), UndefinedError> {
             for (j, (sp, slot)) in points.iter().zip(slots).enumerate() {
                 *slot = self.path_point(first + (k * chunk + j) as u64, *sp)?;
@@ -249,8 +268,17 @@ impl Planner {
                     "constant arc {arc_length_mm} mm, angle step at most {max_angle_step_deg} deg"
                 )
             }
+            Sampling::Hcaa { pv_tolerance_um } | Sampling::Adaptive { pv_tolerance_um } => {
+                crate::hcaa::describe(&j.strategy.sampling, pv_tolerance_um, self.spiral.zones())
+            }
         };
         let sign = |s: f64| if s > 0.0 { "+" } else { "-" };
+        let compensation = match j.strategy.compensation {
+            Compensation::OneWay => "one-way compensation",
+            Compensation::TwoWay => {
+                "two-way compensation (contact on the spiral, nose centre on the surface normal, X and C of the centre)"
+            }
+        };
         Header {
             lines: vec![
                 format!(
@@ -266,7 +294,7 @@ impl Planner {
                     self.spiral.start_radius_mm()
                 ),
                 format!(
-                    "tool nose radius {} mm, included angle {} deg; one-way compensation; Z is the tool tip = nose centre - r",
+                    "tool nose radius {} mm, included angle {} deg; {compensation}; Z is the tool tip = nose centre - r",
                     j.tool.nose_radius_mm, j.tool.included_angle_deg
                 ),
                 format!(
@@ -333,7 +361,7 @@ impl Planner {
                 break;
             }
             self.compensate_batch(stats.points, &input, &mut output)?;
-            for p in &output {
+            for (p, folds) in &output {
                 nc.point(p)?;
                 if let Some(csv) = csv.as_mut() {
                     csv.point(p)?;
@@ -342,6 +370,9 @@ impl Planner {
                     d.push(p);
                 }
                 stats.add(p);
+                if *folds {
+                    stats.add_loop_point(p);
+                }
                 if stats.points % PROGRESS_EVERY == 0
                     && progress(Progress {
                         done: stats.points,

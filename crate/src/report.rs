@@ -5,6 +5,16 @@
 //! the slope the Z axis (or FTS) must follow; with the spindle speed it gives the Z velocity.
 //! `surface_pv_um` is the peak-to-valley of the sag over the contact points. The cycle time is
 //! the total spindle angle at the job's speed.
+//!
+//! X motion, for both compensations (one-way X is the spiral itself: no reversal, no
+//! acceleration beyond rounding): `x_reversals` counts the points where ΔX between consecutive
+//! points changes sign (zero steps skipped), a servo burden on SSS; `max_x_acceleration_mm_s2`
+//! is the largest |d²X/dt²| from the second difference of three consecutive points on their
+//! (possibly unequal) C steps, `2·(ΔX₂/ΔC₂ − ΔX₁/ΔC₁)/(ΔC₁ + ΔC₂)` times ω², the spindle's
+//! angular speed at the job's rpm, placed at the middle point. `two_way_loops` counts the runs
+//! of consecutive points where the two-way offset folds (a path loop, see
+//! [`crate::compensate`]), `two_way_loop_points` their points and `first_two_way_loop_at` the
+//! first; always 0 (and null) for one-way, which cannot loop.
 
 use crate::plan::{PathPoint, Planner};
 use crate::reach::{ConcaveZone, Reach};
@@ -26,6 +36,17 @@ pub struct Stats {
     max_slope_at: (f64, f64),
     arc_end: u64,
     first_arc_end: Option<(f64, f64)>,
+    before_last: Option<PathPoint>,
+    last_dx_sign: f64,
+    x_reversals: u64,
+    /// Largest |d²X/dC²|, mm/rad².
+    max_x_curv: f64,
+    max_x_curv_at: (f64, f64),
+    loops: u64,
+    loop_points: u64,
+    first_loop: Option<(f64, f64)>,
+    /// Index of the last loop point, to tell runs apart.
+    last_loop_index: Option<u64>,
 }
 
 impl Stats {
@@ -47,14 +68,44 @@ impl Stats {
                 self.z_max = self.z_max.max(p.z);
                 self.sag_min = self.sag_min.min(p.contact[2]);
                 self.sag_max = self.sag_max.max(p.contact[2]);
+                let dx = p.rho - q.rho;
+                if dx != 0.0 {
+                    let sign = dx.signum();
+                    if self.last_dx_sign != 0.0 && sign != self.last_dx_sign {
+                        self.x_reversals += 1;
+                    }
+                    self.last_dx_sign = sign;
+                }
+                if let Some(o) = &self.before_last {
+                    let (h1, h2) = ((q.theta - o.theta).abs(), (p.theta - q.theta).abs());
+                    if h1 > 0.0 && h2 > 0.0 {
+                        let d2 =
+                            (2.0 * ((p.rho - q.rho) / h2 - (q.rho - o.rho) / h1) / (h1 + h2)).abs();
+                        if d2 > self.max_x_curv {
+                            self.max_x_curv = d2;
+                            self.max_x_curv_at = (q.rho, q.theta);
+                        }
+                    }
+                }
             }
         }
+        self.before_last = self.last;
         if p.at_arc_end {
             self.arc_end += 1;
             self.first_arc_end.get_or_insert((p.rho, p.theta));
         }
         self.points += 1;
         self.last = Some(*p);
+    }
+
+    /// Records that the two-way offset folds at `p`, which was just [added](Stats::add).
+    pub fn add_loop_point(&mut self, p: &PathPoint) {
+        if self.last_loop_index.is_none_or(|i| i + 1 != p.index) {
+            self.loops += 1;
+        }
+        self.last_loop_index = Some(p.index);
+        self.loop_points += 1;
+        self.first_loop.get_or_insert((p.rho, p.theta));
     }
 
     /// Total spindle angle, radians.
@@ -114,6 +165,18 @@ pub struct Report {
     pub z_max_mm: f64,
     /// Points whose contact lies at an end of the nose arc.
     pub arc_end_contacts: u64,
+    /// Points where the X motion changes direction (see the module docs).
+    pub x_reversals: u64,
+    /// Largest X acceleration at the spindle speed, mm/s².
+    pub max_x_acceleration_mm_s2: f64,
+    /// Where it occurs (X and C of the middle point).
+    pub max_x_acceleration_at: Location,
+    /// Runs of consecutive points where the two-way offset folds (loops); 0 for one-way.
+    pub two_way_loops: u64,
+    /// Points in those runs.
+    pub two_way_loop_points: u64,
+    /// The first loop point (X and C), if any.
+    pub first_two_way_loop_at: Option<Location>,
     /// Zones the nose cannot reach, deepest first (form error ≥ 0.1 nm, at most 500).
     pub concave_zones: Vec<ConcaveZone>,
     /// Further zones with a form error below 0.1 nm, counted only.
@@ -148,7 +211,17 @@ impl Report {
                 deepest.at.theta_deg
             ));
         }
+        if let Some((rho, theta)) = stats.first_loop {
+            let at = Location::new(rho, theta);
+            warnings.push(format!(
+                "two-way compensation leaves {} loop(s) ({} points) where the surface is concave with a \
+                 curvature radius below the nose radius {} mm: the offset path self-intersects; first at \
+                 X {:.4} mm, C {:.2} deg",
+                stats.loops, stats.loop_points, job.tool.nose_radius_mm, at.rho_mm, at.theta_deg
+            ));
+        }
         let start = planner.spiral().start_radius_mm();
+        let omega = job.machine.spindle_rpm / 60.0 * TAU;
         if start > job.outer_radius_mm() + 1e-12 {
             warnings.push(format!(
                 "the path starts at radius {start:.6} mm, {:.3} um outside the outer radius, so that \
@@ -171,6 +244,12 @@ impl Report {
             z_min_mm: stats.z_min,
             z_max_mm: stats.z_max,
             arc_end_contacts: stats.arc_end,
+            x_reversals: stats.x_reversals,
+            max_x_acceleration_mm_s2: stats.max_x_curv * omega * omega,
+            max_x_acceleration_at: Location::new(stats.max_x_curv_at.0, stats.max_x_curv_at.1),
+            two_way_loops: stats.loops,
+            two_way_loop_points: stats.loop_points,
+            first_two_way_loop_at: stats.first_loop.map(|(r, t)| Location::new(r, t)),
             concave_zones,
             shallow_concave_zones: reach.shallow_zones,
             warnings,

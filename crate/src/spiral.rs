@@ -12,6 +12,13 @@
 //! `S(φ) = (b/2)·(φ√(1+φ²) + asinh φ)` (closed form of `∫ b√(1+t²) dt`). Each step solves
 //! `S(φ_k) − S(φ_{k+1}) = ΔS` by Newton's method, then takes the smaller of that angle step and
 //! the cap; the last step ends exactly at the centre and may be shorter.
+//!
+//! Hybrid (HCAA, paper 000) and adaptive sampling depend on the surface: [`crate::hcaa`] turns
+//! the PV tolerance into [`Zone`]s (radius bands, each with a constant angle step or a constant
+//! arc length) and builds the spiral with [`Spiral::with_zones`]. Within a zone the step rule is
+//! that of the plain sampling; a step that would end in a zone further in takes the smaller of
+//! the two zones' steps, so every segment obeys the rule of each zone it touches. The path starts
+//! at the outer radius and its last step ends exactly at the centre.
 
 use crate::field::{FieldError, finite, in_range, positive};
 use serde::{Deserialize, Serialize};
@@ -34,6 +41,82 @@ pub enum Sampling {
         #[serde(default = "default_max_angle_step")]
         max_angle_step_deg: f64,
     },
+    /// Hybrid constant-angle / constant-arc sampling (paper 000, "HCAA method"): constant angle
+    /// outside the first transition radius, constant arc between the two, constant angle inside
+    /// the second, each step the largest that holds the tolerance, chosen from the surface's
+    /// curvature along the cut ([`crate::hcaa`]).
+    Hcaa {
+        /// Linearization error allowed, PVerr, µm, in [0.001, 1000].
+        pv_tolerance_um: f64,
+    },
+    /// Constant angle step per radius band (about one feed wide, at most 512 bands), each the
+    /// largest that holds the tolerance in that band ([`crate::hcaa`]).
+    Adaptive {
+        /// Linearization error allowed, PVerr, µm, in [0.001, 1000].
+        pv_tolerance_um: f64,
+    },
+}
+
+/// Smallest PV tolerance of the surface-dependent samplings, µm.
+pub const MIN_PV_TOLERANCE_UM: f64 = 0.001;
+/// Largest PV tolerance of the surface-dependent samplings, µm.
+pub const MAX_PV_TOLERANCE_UM: f64 = 1000.0;
+
+/// The step rule of one [`Zone`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Step {
+    /// Constant angle step, radians, in (0, π].
+    Angle {
+        /// Δθ, radians.
+        step_rad: f64,
+    },
+    /// Constant arc length along the planar spiral, the angle step capped.
+    Arc {
+        /// ΔS, mm, > 0.
+        arc_length_mm: f64,
+        /// Largest Δθ, radians, in (0, π].
+        max_step_rad: f64,
+    },
+}
+
+/// A radius band of a zoned spiral: from the previous zone's inner radius (the outer radius for
+/// the first) down to `inner_radius_mm`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Zone {
+    /// Inner radius of the band, mm, ≥ 0; the last zone's is 0.
+    pub inner_radius_mm: f64,
+    /// How points are spaced in it.
+    pub step: Step,
+}
+
+impl Step {
+    /// The angle step from `φ = ρ/b` inward.
+    fn at(self, b: f64, phi: f64) -> f64 {
+        match self {
+            Step::Angle { step_rad } => step_rad,
+            Step::Arc {
+                arc_length_mm,
+                max_step_rad,
+            } => (phi - step_in(b, phi, arc_length_mm)).min(max_step_rad),
+        }
+    }
+
+    /// Steps over `φ ∈ [lo, hi]` (an estimate for arc steps).
+    pub(crate) fn count(self, b: f64, lo: f64, hi: f64) -> f64 {
+        match self {
+            Step::Angle { step_rad } => (hi - lo) / step_rad,
+            Step::Arc {
+                arc_length_mm,
+                max_step_rad,
+            } => {
+                // Inside φ_c the cap binds: ds/(b√(1+φ²)) = cap.
+                let r = arc_length_mm / (b * max_step_rad);
+                let phi_c = (r * r - 1.0).max(0.0).sqrt().clamp(lo, hi);
+                (arc_length(b, hi) - arc_length(b, phi_c)) / arc_length_mm
+                    + (phi_c - lo) / max_step_rad
+            }
+        }
+    }
 }
 
 fn default_max_angle_step() -> f64 {
@@ -78,6 +161,7 @@ pub struct Spiral {
     sampling: Sampling,
     sign: f64,
     theta0: f64,
+    zones: Vec<Zone>,
 }
 
 /// The most points per revolution.
@@ -122,14 +206,106 @@ impl Spiral {
                 }
                 in_range("sampling.max_angle_step_deg", max_angle_step_deg, 0.0, 90.0)?;
             }
+            Sampling::Hcaa { pv_tolerance_um } | Sampling::Adaptive { pv_tolerance_um } => {
+                check_tolerance(pv_tolerance_um)?;
+                return Err(FieldError::new(
+                    "sampling.type",
+                    "hcaa/adaptive",
+                    "depends on the surface: plan it with spiralcam::hcaa::spiral (the planner does)",
+                ));
+            }
         }
-        let spiral = Self {
+        Self::checked(Self {
             outer_radius,
             feed,
             sampling: sampling.clone(),
             sign: direction.sign(),
             theta0,
-        };
+            zones: Vec::new(),
+        })
+    }
+
+    /// A spiral whose steps follow `zones` (outside in; see the module docs), labelled with the
+    /// surface-dependent `sampling` they were derived from. Zones with an inner radius at or
+    /// above the outer radius are skipped; the last zone is taken down to the centre.
+    pub fn with_zones(
+        outer_radius_mm: f64,
+        feed_mm_per_rev: f64,
+        sampling: &Sampling,
+        zones: &[Zone],
+        direction: Direction,
+        start_angle_deg: f64,
+    ) -> Result<Self, FieldError> {
+        let outer_radius = positive("outer_radius_mm", outer_radius_mm)?;
+        let feed = positive("feed_mm_per_rev", feed_mm_per_rev)?;
+        let theta0 = finite("start_angle_deg", start_angle_deg)?.to_radians();
+        if let Sampling::Hcaa { pv_tolerance_um } | Sampling::Adaptive { pv_tolerance_um } =
+            *sampling
+        {
+            check_tolerance(pv_tolerance_um)?;
+        }
+        let mut kept: Vec<Zone> = Vec::with_capacity(zones.len());
+        for z in zones {
+            let bad = |what: &str, v: f64| {
+                Err(FieldError::new(
+                    format!("sampling.zones.{what}"),
+                    v,
+                    "must be > 0 and finite (angles at most π)",
+                ))
+            };
+            match z.step {
+                Step::Angle { step_rad }
+                    if !(step_rad > 0.0 && step_rad <= std::f64::consts::PI) =>
+                {
+                    return bad("step_rad", step_rad);
+                }
+                Step::Arc { arc_length_mm, .. }
+                    if !(arc_length_mm > 0.0 && arc_length_mm.is_finite()) =>
+                {
+                    return bad("arc_length_mm", arc_length_mm);
+                }
+                Step::Arc { max_step_rad, .. }
+                    if !(max_step_rad > 0.0 && max_step_rad <= std::f64::consts::PI) =>
+                {
+                    return bad("max_step_rad", max_step_rad);
+                }
+                _ => {}
+            }
+            if z.inner_radius_mm < outer_radius
+                && kept
+                    .last()
+                    .is_none_or(|k| z.inner_radius_mm < k.inner_radius_mm)
+            {
+                kept.push(*z);
+            }
+        }
+        match kept.last_mut() {
+            Some(last) => last.inner_radius_mm = 0.0,
+            None => {
+                return Err(FieldError::new(
+                    "sampling.zones",
+                    zones.len(),
+                    "at least one zone inside the outer radius",
+                ));
+            }
+        }
+        Self::checked(Self {
+            outer_radius,
+            feed,
+            sampling: sampling.clone(),
+            sign: direction.sign(),
+            theta0,
+            zones: kept,
+        })
+    }
+
+    /// The zones of a surface-dependent spiral (empty for constant angle and constant arc).
+    pub fn zones(&self) -> &[Zone] {
+        &self.zones
+    }
+
+    fn checked(spiral: Self) -> Result<Self, FieldError> {
+        let feed = spiral.feed;
         let points = spiral.point_count_hint();
         if points > MAX_POINTS {
             return Err(FieldError::new(
@@ -149,7 +325,7 @@ impl Spiral {
             Sampling::ConstantAngle { points_per_rev } => {
                 self.angle_steps(points_per_rev) as f64 * self.feed / points_per_rev as f64
             }
-            Sampling::ConstantArc { .. } => self.outer_radius,
+            _ => self.outer_radius,
         }
     }
 
@@ -186,6 +362,17 @@ impl Spiral {
                 let arc = arc_length(b, self.outer_radius / b) - arc_length(b, rho_cap / b);
                 ((arc / arc_length_mm).ceil() + (rho_cap / b / cap).ceil()) as u64 + 1
             }
+            Sampling::Hcaa { .. } | Sampling::Adaptive { .. } => {
+                let b = self.feed / TAU;
+                let mut hi = self.outer_radius / b;
+                let mut n = 1.0;
+                for z in &self.zones {
+                    let lo = z.inner_radius_mm / b;
+                    n += z.step.count(b, lo, hi).ceil() + 1.0;
+                    hi = lo;
+                }
+                n as u64
+            }
         }
     }
 
@@ -211,6 +398,16 @@ impl Spiral {
                     cap: max_angle_step_deg.to_radians(),
                 }
             }
+            Sampling::Hcaa { .. } | Sampling::Adaptive { .. } => {
+                let b = self.feed / TAU;
+                let phi = self.outer_radius / b;
+                State::Zoned {
+                    b,
+                    phi0: phi,
+                    phi,
+                    zone: 0,
+                }
+            }
         };
         SpiralPoints {
             spiral: self.clone(),
@@ -218,6 +415,15 @@ impl Spiral {
             done: false,
         }
     }
+}
+
+fn check_tolerance(pv_tolerance_um: f64) -> Result<f64, FieldError> {
+    in_range(
+        "sampling.pv_tolerance_um",
+        pv_tolerance_um,
+        MIN_PV_TOLERANCE_UM,
+        MAX_PV_TOLERANCE_UM,
+    )
 }
 
 /// `S(φ)`: arc length of `ρ = bφ` from the centre to φ.
@@ -255,6 +461,12 @@ enum State {
         phi: f64,
         ds: f64,
         cap: f64,
+    },
+    Zoned {
+        b: f64,
+        phi0: f64,
+        phi: f64,
+        zone: usize,
     },
 }
 
@@ -301,6 +513,31 @@ impl Iterator for SpiralPoints {
                 } else {
                     *phi = step_in(*b, *phi, *ds).max(*phi - *cap);
                 }
+                Some(p)
+            }
+            State::Zoned { b, phi0, phi, zone } => {
+                let p = SpiralPoint {
+                    rho: *b * *phi,
+                    theta: t0 + sign * (*phi0 - *phi),
+                };
+                if *phi == 0.0 {
+                    self.done = true;
+                    return Some(p);
+                }
+                let zones = &self.spiral.zones;
+                // The zone of this point: the first whose inner radius lies below it.
+                let rho = *b * *phi;
+                while *zone + 1 < zones.len() && zones[*zone].inner_radius_mm >= rho {
+                    *zone += 1;
+                }
+                let mut d = zones[*zone].step.at(*b, *phi);
+                // The smaller step of every zone the segment reaches.
+                let mut k = *zone;
+                while k + 1 < zones.len() && zones[k].inner_radius_mm > *b * (*phi - d) {
+                    k += 1;
+                    d = d.min(zones[k].step.at(*b, *phi));
+                }
+                *phi = if d >= *phi { 0.0 } else { *phi - d };
                 Some(p)
             }
         }

@@ -80,7 +80,7 @@ const JOB: &str = r#"{
 }"#;
 
 /// The fields the report documents.
-const REPORT_FIELDS: [&str; 17] = [
+const REPORT_FIELDS: [&str; 23] = [
     "job",
     "surface",
     "dialect",
@@ -97,6 +97,12 @@ const REPORT_FIELDS: [&str; 17] = [
     "arc_end_contacts",
     "concave_zones",
     "shallow_concave_zones",
+    "x_reversals",
+    "max_x_acceleration_mm_s2",
+    "max_x_acceleration_at",
+    "two_way_loops",
+    "two_way_loop_points",
+    "first_two_way_loop_at",
     "warnings",
 ];
 

@@ -170,6 +170,19 @@ pub const MAX_POINTS_PER_REV: u32 = 1_000_000;
 /// points before HCAA); more is a mistake in the feed or the sampling, not a job.
 pub const MAX_POINTS: u64 = 1_000_000_000;
 
+/// The outer radius and feed (both > 0) and the start angle in radians, checked.
+fn checked_geometry(
+    outer_radius_mm: f64,
+    feed_mm_per_rev: f64,
+    start_angle_deg: f64,
+) -> Result<(f64, f64, f64), FieldError> {
+    Ok((
+        positive("outer_radius_mm", outer_radius_mm)?,
+        positive("feed_mm_per_rev", feed_mm_per_rev)?,
+        finite("start_angle_deg", start_angle_deg)?.to_radians(),
+    ))
+}
+
 impl Spiral {
     /// Checks the parameters (`field` prefixes name them as in the job) and builds the spiral.
     pub fn new(
@@ -179,9 +192,8 @@ impl Spiral {
         direction: Direction,
         start_angle_deg: f64,
     ) -> Result<Self, FieldError> {
-        let outer_radius = positive("outer_radius_mm", outer_radius_mm)?;
-        let feed = positive("feed_mm_per_rev", feed_mm_per_rev)?;
-        let theta0 = finite("start_angle_deg", start_angle_deg)?.to_radians();
+        let (outer_radius, feed, theta0) =
+            checked_geometry(outer_radius_mm, feed_mm_per_rev, start_angle_deg)?;
         match *sampling {
             Sampling::ConstantAngle { points_per_rev } => {
                 if !(3..=MAX_POINTS_PER_REV).contains(&points_per_rev) {
@@ -236,9 +248,8 @@ impl Spiral {
         direction: Direction,
         start_angle_deg: f64,
     ) -> Result<Self, FieldError> {
-        let outer_radius = positive("outer_radius_mm", outer_radius_mm)?;
-        let feed = positive("feed_mm_per_rev", feed_mm_per_rev)?;
-        let theta0 = finite("start_angle_deg", start_angle_deg)?.to_radians();
+        let (outer_radius, feed, theta0) =
+            checked_geometry(outer_radius_mm, feed_mm_per_rev, start_angle_deg)?;
         if let Sampling::Hcaa { pv_tolerance_um } | Sampling::Adaptive { pv_tolerance_um } =
             *sampling
         {

@@ -34,9 +34,11 @@
 
 mod common;
 
-use common::{RandomSurface, config, random_asphere, random_sinusoid, random_xy_polynomial};
+use common::{
+    RandomSurface, config, path_points, planner_of, random_asphere, random_sinusoid,
+    random_xy_polynomial,
+};
 use proptest::prelude::*;
-use spiralcam::job::Job;
 use spiralcam::linearization::{
     LinearizationCheck, SegmentError, analyse, error_at, segment_error,
 };
@@ -59,14 +61,7 @@ fn planner(surface: &str, part_radius: f64, r: f64, feed: f64, points_per_rev: u
         "strategy":{{"feed_mm_per_rev":{feed},"sampling":{{"type":"constant_angle","points_per_rev":{points_per_rev}}}}}}}"#,
         2.0 * part_radius
     );
-    let job = Job::from_json(&json).unwrap_or_else(|e| panic!("{json}: {e}"));
-    Planner::new(&job).unwrap_or_else(|e| panic!("{json}: {e}"))
-}
-
-fn path(p: &Planner) -> Vec<PathPoint> {
-    p.points()
-        .map(|x| x.unwrap_or_else(|e| panic!("{e}")))
-        .collect()
+    planner_of(&json)
 }
 
 /// e(s) from its definition, independently of the library.
@@ -234,7 +229,7 @@ proptest! {
         at in 0.0..1.0f64,
     ) {
         let p = case_planner(&case, r_frac, points_per_rev, revs);
-        let pts = path(&p);
+        let pts = path_points(&p);
         let k = ((at * (pts.len() - 1) as f64) as usize).min(pts.len() - 2);
         check_segment(&p, &pts[k], &pts[k + 1])?;
     }
@@ -248,7 +243,7 @@ proptest! {
         s in 0.05..0.95f64,
     ) {
         let p = case_planner(&case, r_frac, points_per_rev, 3.0);
-        let pts = path(&p);
+        let pts = path_points(&p);
         let k = ((at * (pts.len() - 1) as f64) as usize).min(pts.len() - 2);
         let (a, b) = (&pts[k], &pts[k + 1]);
         let at_s = |s: f64| error_at(&p, a, b, s).unwrap_or_else(|e| panic!("{e}"));
@@ -316,7 +311,7 @@ fn wavy_segments_with_many_extremes_match_the_brute_force() {
     let json = r#"{"type":"sinusoid","amplitude_mm":0.001,"wavelength_x_mm":0.3,"wavelength_y_mm":0.4,"phase_x_deg":20}"#;
     for r in [0.0, 0.05] {
         let p = planner(json, 1.5, r, 0.5, 12);
-        let pts = path(&p);
+        let pts = path_points(&p);
         for k in [2, 8, 14] {
             let e = check_segment(&p, &pts[k], &pts[k + 1]).unwrap_or_else(|e| panic!("{e}"));
             assert!(
@@ -335,7 +330,7 @@ fn kinks_are_bracketed_and_bisected() {
     let json = r#"{"type":"lens_array","lens_radius_mm":0.6,"aperture_mm":0.4,"pitch_mm":0.5,"grid":"rectangular","form":"convex"}"#;
     for r in [0.0, 0.05] {
         let p = planner(json, 1.2, r, 0.3, 16);
-        let pts = path(&p);
+        let pts = path_points(&p);
         for k in [3, 9, 20] {
             check_segment(&p, &pts[k], &pts[k + 1]).unwrap_or_else(|e| panic!("{e}"));
         }
@@ -369,7 +364,7 @@ fn a_paraboloid_gives_the_radial_chord_error() {
         feed,
         n,
     );
-    let pts = path(&p);
+    let pts = path_points(&p);
     let d_rho = feed / n as f64;
     let expect = d_rho * d_rho / (8.0 * big);
     for w in pts.windows(2) {
@@ -402,7 +397,7 @@ fn a_round_tool_on_a_sphere_follows_the_offset_sphere() {
         16,
     );
     let tip = |rho: f64| big - ((big - r).powi(2) - rho * rho).sqrt() - r;
-    let pts = path(&p);
+    let pts = path_points(&p);
     let mut checked = 0;
     for w in pts.windows(2) {
         let (a, b) = (&w[0], &w[1]);
@@ -499,7 +494,7 @@ fn the_path_check_agrees_with_each_segment() {
         0.25,
         24,
     );
-    let pts = path(&p);
+    let pts = path_points(&p);
     let (mut over, mut under) = (0.0f64, 0.0f64);
     let mut check = LinearizationCheck::new(&p, 32);
     for (i, q) in pts.iter().enumerate() {

@@ -19,9 +19,8 @@
 
 mod common;
 
-use common::config;
+use common::{config, path_points, planner_of};
 use proptest::prelude::*;
-use spiralcam::job::Job;
 use spiralcam::plan::{PathPoint, Planner};
 use spiralcam::tool_geometry::{PointAngles, ToolAngles, ToolGeometryCheck, check};
 use std::f64::consts::TAU;
@@ -38,14 +37,7 @@ fn planner(surface: &str, diameter: f64, direction: &str, included: f64) -> Plan
         "strategy":{{"feed_mm_per_rev":0.5,"direction":"{direction}","start_angle_deg":0,
         "sampling":{{"type":"constant_angle","points_per_rev":360}}}}}}"#
     );
-    let job = Job::from_json(&json).unwrap_or_else(|e| panic!("{json}: {e}"));
-    Planner::new(&job).unwrap_or_else(|e| panic!("{json}: {e}"))
-}
-
-fn path(p: &Planner) -> Vec<PathPoint> {
-    p.points()
-        .map(|x| x.unwrap_or_else(|e| panic!("{e}")))
-        .collect()
+    planner_of(&json)
 }
 
 const FLAT: &str = r#"{"type":"tilted_flat","tilt_deg":20}"#;
@@ -55,7 +47,7 @@ fn tilted_flat_slope_and_critical_clearance() {
     let t = 20f64.to_radians().tan();
     for (dir, sign, worst) in [("ccw", 1.0, 90.0), ("cw", -1.0, 270.0)] {
         let p = planner(FLAT, 10.0, dir, 100.0);
-        for q in path(&p) {
+        for q in path_points(&p) {
             let (s, c) = q.theta.sin_cos();
             let l = p.surface().local(q.rho * c, q.rho * s).unwrap();
             let a = PointAngles::from_gradient(l.zx, l.zy, q.theta, sign);
@@ -127,7 +119,7 @@ fn sphere_radial_slope_gives_the_included_angle() {
     for (radius, included, ok) in [(20.0, 100.0, true), (6.0, 100.0, false)] {
         let s = format!(r#"{{"type":"asphere","radius_mm":{radius}}}"#);
         let p = planner(&s, 10.0, "cw", included);
-        let rho_max = path(&p).iter().map(|q| q.rho).fold(0.0, f64::max);
+        let rho_max = path_points(&p).iter().map(|q| q.rho).fold(0.0, f64::max);
         let expect = (rho_max / (radius * radius - rho_max * rho_max).sqrt())
             .atan()
             .to_degrees();

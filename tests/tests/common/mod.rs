@@ -28,7 +28,7 @@ use proptest::prelude::*;
 use proptest::test_runner::{Config as ProptestConfig, RngSeed};
 use spiralcam::field::FieldError;
 use spiralcam::job::Job;
-use spiralcam::plan::Planner;
+use spiralcam::plan::{PathPoint, Planner};
 use spiralcam::surface::{Local, Surface, SurfaceSpec};
 use std::f64::consts::TAU;
 
@@ -498,4 +498,17 @@ pub fn random_sinusoid(
                 curvature: a * k2,
             }
         })
+}
+
+/// The planner of a job given as JSON, panicking with the JSON and the error.
+pub fn planner_of(json: &str) -> Planner {
+    let job = Job::from_json(json).unwrap_or_else(|e| panic!("{json}: {e}"));
+    Planner::new(&job).unwrap_or_else(|e| panic!("{json}: {e}"))
+}
+
+/// Every point of a planner's path.
+pub fn path_points(p: &Planner) -> Vec<PathPoint> {
+    p.points()
+        .map(|x| x.unwrap_or_else(|e| panic!("{e}")))
+        .collect()
 }

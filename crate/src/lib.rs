@@ -23,6 +23,7 @@ pub mod predicted_form;
 pub mod raster;
 pub mod reach;
 pub mod report;
+pub mod space_spiral;
 pub mod spiral;
 pub mod surface;
 pub mod tool_geometry;

@@ -36,6 +36,7 @@
 //!
 //! Not wired into the planner, the NC writers or the page.
 
+use crate::surface::nurbs::basis::KnotVector;
 use crate::surface::{Surface, UndefinedError};
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::TAU;
@@ -108,12 +109,10 @@ impl Default for BaseFitOptions {
 #[derive(Debug, Clone, PartialEq)]
 pub struct BaseSurface {
     radius_mm: f64,
-    knots: Vec<f64>,
-    /// Control values of z_b (degree 3), its derivative (degree 2) and second derivative
-    /// (degree 1).
-    c0: Vec<f64>,
-    c1: Vec<f64>,
-    c2: Vec<f64>,
+    /// The knots (degree 3), evaluated with the NURBS module's basis functions.
+    knots: KnotVector,
+    /// Control values of z_b.
+    c: Vec<f64>,
     /// Cumulative arc length along the generating curve at `ρ_k = k·R/M`.
     arc_table: Vec<f64>,
 }
@@ -147,56 +146,6 @@ const GL_W: [f64; 5] = [
 
 /// Arc-length table pieces per knot span.
 const ARC_PIECES_PER_SPAN: usize = 32;
-
-/// The knot span index i with `t_i ≤ u < t_{i+1}`, clamped to the first and last non-empty
-/// spans (outside `[0, R]` the end polynomials are extended).
-fn find_span(knots: &[f64], p: usize, n_basis: usize, u: f64) -> usize {
-    let mut lo = p;
-    let mut hi = n_basis; // span indices p..n_basis-1
-    while hi - lo > 1 {
-        let mid = (lo + hi) / 2;
-        if u < knots[mid] {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    lo
-}
-
-/// The p + 1 non-zero B-spline basis functions of degree p at u in span i (The NURBS Book,
-/// algorithm A2.2).
-fn basis_funs(knots: &[f64], i: usize, p: usize, u: f64, out: &mut [f64; 4]) {
-    let mut left = [0.0; 4];
-    let mut right = [0.0; 4];
-    out[0] = 1.0;
-    for j in 1..=p {
-        left[j] = u - knots[i + 1 - j];
-        right[j] = knots[i + j] - u;
-        let mut saved = 0.0;
-        for r in 0..j {
-            let temp = out[r] / (right[r + 1] + left[j - r]);
-            out[r] = saved + right[r + 1] * temp;
-            saved = left[j - r] * temp;
-        }
-        out[j] = saved;
-    }
-}
-
-/// Value of the degree-p spline with control values `c` on `knots` at u.
-fn eval_spline(knots: &[f64], p: usize, c: &[f64], u: f64) -> f64 {
-    let i = find_span(knots, p, c.len(), u);
-    let mut n = [0.0; 4];
-    basis_funs(knots, i, p, u, &mut n);
-    (0..=p).map(|j| n[j] * c[i - p + j]).sum()
-}
-
-/// Control values of the derivative of a degree-p spline: `p (c_{i+1} − c_i)/(t_{i+p+1} − t_{i+1})`.
-fn derivative(knots: &[f64], p: usize, c: &[f64]) -> Vec<f64> {
-    (0..c.len() - 1)
-        .map(|i| p as f64 * (c[i + 1] - c[i]) / (knots[i + p + 1] - knots[i + 1]))
-        .collect()
-}
 
 impl BaseSurface {
     /// Fits the generating curve about Z to the design sag over a part of radius
@@ -237,10 +186,12 @@ impl BaseSurface {
             return Err(invalid("angles", "must be at least 1, got 0".into()));
         }
         let h = r / spans as f64;
-        let mut knots = vec![0.0; 4];
-        knots.extend((1..spans).map(|k| k as f64 * h));
-        knots.extend([r; 4]);
+        let mut knot_values = vec![0.0; 4];
+        knot_values.extend((1..spans).map(|k| k as f64 * h));
+        knot_values.extend([r; 4]);
         let n_basis = spans + 3;
+        let knots = KnotVector::new("spans", 3, n_basis, &knot_values)
+            .map_err(|e| invalid("spans", e.to_string()))?;
 
         // Sample the design; rows of one ring share the basis row, so the least-squares
         // problem reduces to one row per ring weighted by √(samples on the ring) with the
@@ -260,12 +211,11 @@ impl BaseSurface {
         }
         let mut a = DMatrix::<f64>::zeros(rings + 1, unknowns);
         let mut b = DVector::<f64>::zeros(rings + 1);
-        let mut n = [0.0; 4];
         for (row, (&rho, zs)) in ring_rho.iter().zip(&samples).enumerate() {
             let w = (zs.len() as f64).sqrt();
-            let i = find_span(&knots, 3, n_basis, rho);
-            basis_funs(&knots, i, 3, rho, &mut n);
-            for (j, &nj) in n.iter().enumerate() {
+            let i = knots.span(rho);
+            let n = knots.ders(i, rho, 0)[0];
+            for (j, &nj) in n[..4].iter().enumerate() {
                 let col = (i - 3 + j).saturating_sub(1); // c₀ and c₁ share column 0
                 a[(row, col)] += w * nj;
             }
@@ -275,17 +225,13 @@ impl BaseSurface {
             .svd(true, true)
             .solve(&b, 1e-14)
             .map_err(|e| SpaceSpiralError::Fit(e.to_string()))?;
-        let mut c0 = Vec::with_capacity(n_basis);
-        c0.push(x[0]);
-        c0.extend(x.iter().copied());
-        let c1 = derivative(&knots, 3, &c0);
-        let c2 = derivative(&knots[1..knots.len() - 1], 2, &c1);
+        let mut c = Vec::with_capacity(n_basis);
+        c.push(x[0]);
+        c.extend(x.iter().copied());
         let mut base = Self {
             radius_mm: r,
             knots,
-            c0,
-            c1,
-            c2,
+            c,
             arc_table: Vec::new(),
         };
         base.build_arc_table();
@@ -312,19 +258,27 @@ impl BaseSurface {
         self.radius_mm
     }
 
+    /// The `order`-th derivative (0, 1, 2) of z_b at ρ; beyond `[0, R]` the end polynomials
+    /// continue.
+    fn derivative(&self, rho: f64, order: usize) -> f64 {
+        let span = self.knots.span(rho);
+        let d = self.knots.ders(span, rho, order);
+        (0..4).map(|j| d[order][j] * self.c[span - 3 + j]).sum()
+    }
+
     /// `z_b(ρ)`, mm (even in ρ).
     pub fn z(&self, rho: f64) -> f64 {
-        eval_spline(&self.knots, 3, &self.c0, rho.abs())
+        self.derivative(rho.abs(), 0)
     }
 
     /// `dz_b/dρ` at ρ ≥ 0.
     pub fn slope(&self, rho: f64) -> f64 {
-        eval_spline(&self.knots[1..self.knots.len() - 1], 2, &self.c1, rho)
+        self.derivative(rho, 1)
     }
 
     /// `d²z_b/dρ²` at ρ ≥ 0, 1/mm.
     pub fn curvature_term(&self, rho: f64) -> f64 {
-        eval_spline(&self.knots[2..self.knots.len() - 2], 1, &self.c2, rho)
+        self.derivative(rho, 2)
     }
 
     /// Unit normal of the base surface at `(x, y)`, pointing to +Z.
@@ -339,7 +293,7 @@ impl BaseSurface {
     }
 
     fn arc_pieces(&self) -> usize {
-        (self.knots.len() - 7) * ARC_PIECES_PER_SPAN
+        (self.knots.count() - 3) * ARC_PIECES_PER_SPAN
     }
 
     /// `∫ √(1 + z_b′²) dρ` over `[r0, r1]` by 5-point Gauss–Legendre (one call per short piece).

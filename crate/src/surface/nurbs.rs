@@ -26,7 +26,7 @@
 //! and are refused. The optical axis is +Z and sag is measured from the vertex plane z = 0: the
 //! net is given in those coordinates.
 
-mod basis;
+pub(crate) mod basis;
 mod coverage;
 mod height;
 mod inverse;

@@ -251,9 +251,10 @@ const SECTIONS = [
   ['Machine', [{ path: 'machine.spindle_rpm', label: 'Spindle speed', unit: 'rpm', hint: '> 0' }]],
   ['Strategy', [
     { path: 'strategy.feed_mm_per_rev', label: 'Feed f', unit: 'mm/rev', hint: '> 0' },
-    { path: 'strategy.sampling.type', label: 'Sampling', options: ['constant_angle', 'constant_arc', 'hcaa', 'adaptive'], optionLabels: ['constant angle', 'constant arc', 'HCAA (paper 000)', 'adaptive per revolution'] },
+    { path: 'strategy.sampling.type', label: 'Sampling', options: ['constant_angle', 'constant_arc', 'hcaa', 'adaptive', 'space_spiral'], optionLabels: ['constant angle', 'constant arc', 'HCAA (paper 000)', 'adaptive per revolution', 'space spiral (paper 001)'] },
     { path: 'strategy.sampling.pv_tolerance_um', label: 'Linearization PV tolerance', unit: 'µm', hint: '> 0', when: 'hcaa adaptive' },
-    { path: 'strategy.sampling.points_per_rev', label: 'Points per revolution', unit: '', hint: '3 … 1 000 000', when: 'constant_angle' },
+    { path: 'strategy.sampling.points_per_rev', label: 'Points per revolution', unit: '', hint: '3 … 1 000 000', when: 'constant_angle space_spiral' },
+    { path: 'strategy.sampling.base_spans', label: 'Base surface spans', unit: '', hint: '1 … 64', when: 'space_spiral' },
     { path: 'strategy.sampling.arc_length_mm', label: 'Arc length ΔS', unit: 'mm', hint: '> 0', when: 'constant_arc' },
     { path: 'strategy.sampling.max_angle_step_deg', label: 'Largest angle step', unit: '°', hint: '(0, 90]', when: 'constant_arc' },
     { path: 'strategy.direction', label: 'Direction of θ', options: ['ccw', 'cw'] },
@@ -589,6 +590,7 @@ export class JobForm {
           constant_arc: { type: 'constant_arc', arc_length_mm: 0.02, max_angle_step_deg: 1 },
           hcaa: { type: 'hcaa', pv_tolerance_um: 1 },
           adaptive: { type: 'adaptive', pv_tolerance_um: 1 },
+          space_spiral: { type: 'space_spiral', points_per_rev: 720, base_spans: 8 },
         }[t.value];
         this.show(this.job);
       }

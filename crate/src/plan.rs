@@ -271,6 +271,12 @@ impl Planner {
             Sampling::Hcaa { pv_tolerance_um } | Sampling::Adaptive { pv_tolerance_um } => {
                 crate::hcaa::describe(&j.strategy.sampling, pv_tolerance_um, self.spiral.zones())
             }
+            Sampling::SpaceSpiral {
+                points_per_rev,
+                base_spans,
+            } => format!(
+                "space spiral (paper 001), {points_per_rev} points/rev, passes f apart along the meridian of a base surface of revolution ({base_spans} spans), projected along its normal"
+            ),
         };
         let sign = |s: f64| if s > 0.0 { "+" } else { "-" };
         let compensation = match j.strategy.compensation {

@@ -34,7 +34,8 @@
 //! [`pass_spacing`] measures the 3-D distance between a point and the point one revolution
 //! further in at the same angle, for either path.
 //!
-//! Not wired into the planner, the NC writers or the page.
+//! The planner uses it as the sampling `space_spiral` ([`crate::hcaa::spiral`] builds the
+//! spiral points from the projected design points).
 
 use crate::surface::nurbs::basis::KnotVector;
 use crate::surface::{Surface, UndefinedError};
@@ -510,28 +511,46 @@ pub fn space_spiral(
     points_per_rev: usize,
 ) -> Result<Vec<SpacePoint>, SpaceSpiralError> {
     check_spiral_args(feed_mm, points_per_rev)?;
-    let total = base.total_arc_length();
-    let count = (points_per_rev as f64 * total / feed_mm + 1e-9).floor() as usize + 1;
-    let mut out = Vec::with_capacity(count);
-    for k in 0..count {
-        let theta = TAU * k as f64 / points_per_rev as f64;
-        let s = total - feed_mm * k as f64 / points_per_rev as f64;
-        let rho = base.rho_at_arc(s);
-        let (sn, cs) = theta.sin_cos();
-        let (x, y) = (rho * cs, rho * sn);
-        let p = [x, y, base.z(rho)];
-        let d = base.slope(rho);
-        let w = (1.0 + d * d).sqrt();
-        let n = [-d * cs / w, -d * sn / w, 1.0 / w];
-        let design = project_along(surface, p, n)?;
-        out.push(SpacePoint {
-            theta,
-            base: p,
-            direction: n,
-            design,
-        });
-    }
-    Ok(out)
+    let count = space_spiral_count(base, feed_mm, points_per_rev);
+    (0..count)
+        .map(|k| {
+            let theta = TAU * k as f64 / points_per_rev as f64;
+            let s = base.total_arc_length() - feed_mm * k as f64 / points_per_rev as f64;
+            space_point(surface, base, s, theta, theta)
+        })
+        .collect()
+}
+
+/// Points of [`space_spiral`]: `⌊N·S/f⌋ + 1`.
+pub fn space_spiral_count(base: &BaseSurface, feed_mm: f64, points_per_rev: usize) -> usize {
+    (points_per_rev as f64 * base.total_arc_length() / feed_mm + 1e-9).floor() as usize + 1
+}
+
+/// The point of the space spiral at arc length `s` from the axis along the base meridian,
+/// spiral angle `theta` (stored in the result), laid at the polar angle `polar` in XY (θ for
+/// [`space_spiral`]; the planner adds its start angle and direction), projected onto the design
+/// surface along the base normal.
+pub fn space_point(
+    surface: &dyn Surface,
+    base: &BaseSurface,
+    s: f64,
+    theta: f64,
+    polar: f64,
+) -> Result<SpacePoint, SpaceSpiralError> {
+    let rho = base.rho_at_arc(s);
+    let (sn, cs) = polar.sin_cos();
+    let (x, y) = (rho * cs, rho * sn);
+    let p = [x, y, base.z(rho)];
+    let d = base.slope(rho);
+    let w = (1.0 + d * d).sqrt();
+    let n = [-d * cs / w, -d * sn / w, 1.0 / w];
+    let design = project_along(surface, p, n)?;
+    Ok(SpacePoint {
+        theta,
+        base: p,
+        direction: n,
+        design,
+    })
 }
 
 /// The ordinary spiral projected along Z: `ρ(θ) = R − f·θ/2π` in the XY plane, the same angle

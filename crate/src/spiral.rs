@@ -23,6 +23,7 @@
 use crate::field::{FieldError, finite, in_range, positive};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
+use std::sync::Arc;
 
 /// How points are spaced along the spiral.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -55,7 +56,26 @@ pub enum Sampling {
         /// Linearization error allowed, PVerr, µm, in [0.001, 1000].
         pv_tolerance_um: f64,
     },
+    /// The space Archimedean spiral (paper 001, [`crate::space_spiral`]): passes `f` apart along
+    /// the meridian of a best-fit surface of revolution, `points_per_rev` points per revolution
+    /// at constant angle, projected onto the design surface along the base normal; the XY of the
+    /// projected points are the spiral points. Built by [`crate::hcaa::spiral`] and held in
+    /// memory (16 bytes a point, at most [`MAX_EXPLICIT_POINTS`]).
+    SpaceSpiral {
+        /// Points per revolution N, 3 … 1 000 000.
+        points_per_rev: u32,
+        /// Uniform knot spans of the base generating curve, 1 … 64; default 8.
+        #[serde(default = "default_base_spans")]
+        base_spans: u32,
+    },
 }
+
+fn default_base_spans() -> u32 {
+    8
+}
+
+/// The most points of a spiral held in memory ([`Spiral::from_points`]): 2·10⁷, 320 MB.
+pub const MAX_EXPLICIT_POINTS: u64 = 20_000_000;
 
 /// Smallest PV tolerance of the surface-dependent samplings, µm.
 pub const MIN_PV_TOLERANCE_UM: f64 = 0.001;
@@ -162,6 +182,9 @@ pub struct Spiral {
     sign: f64,
     theta0: f64,
     zones: Vec<Zone>,
+    /// The points of a spiral built from a list ([`Spiral::from_points`]), shared by its
+    /// iterators.
+    explicit: Option<Arc<[SpiralPoint]>>,
 }
 
 /// The most points per revolution.
@@ -226,6 +249,13 @@ impl Spiral {
                     "depends on the surface: plan it with spiralcam::hcaa::spiral (the planner does)",
                 ));
             }
+            Sampling::SpaceSpiral { .. } => {
+                return Err(FieldError::new(
+                    "sampling.type",
+                    "space_spiral",
+                    "depends on the surface: plan it with spiralcam::hcaa::spiral (the planner does)",
+                ));
+            }
         }
         Self::checked(Self {
             outer_radius,
@@ -234,6 +264,57 @@ impl Spiral {
             sign: direction.sign(),
             theta0,
             zones: Vec::new(),
+            explicit: None,
+        })
+    }
+
+    /// A spiral through the given points (outside in; `theta` cumulative, already including the
+    /// start angle and direction), labelled with the `sampling` they were made by. The list is
+    /// held: 16 bytes a point, at most [`MAX_EXPLICIT_POINTS`]. The last point must be at the
+    /// centre (ρ = 0) and every point finite with ρ ≥ 0.
+    pub fn from_points(
+        feed_mm_per_rev: f64,
+        sampling: &Sampling,
+        points: Vec<SpiralPoint>,
+    ) -> Result<Self, FieldError> {
+        let feed = positive("feed_mm_per_rev", feed_mm_per_rev)?;
+        if points.len() as u64 > MAX_EXPLICIT_POINTS {
+            return Err(FieldError::new(
+                "sampling.points",
+                points.len(),
+                format!("at most {MAX_EXPLICIT_POINTS} points are held in memory"),
+            ));
+        }
+        if let Some((i, p)) = points
+            .iter()
+            .enumerate()
+            .find(|(_, p)| !(p.rho.is_finite() && p.rho >= 0.0 && p.theta.is_finite()))
+        {
+            return Err(FieldError::new(
+                "sampling.points",
+                format!("point {i} (rho {}, theta {})", p.rho, p.theta),
+                "must be finite with rho >= 0",
+            ));
+        }
+        let (Some(first), Some(last)) = (points.first(), points.last()) else {
+            return Err(FieldError::new("sampling.points", 0, "at least one point"));
+        };
+        if last.rho != 0.0 {
+            return Err(FieldError::new(
+                "sampling.points",
+                format!("last rho {}", last.rho),
+                "the last point must be at the centre (rho = 0)",
+            ));
+        }
+        let sign = if last.theta >= first.theta { 1.0 } else { -1.0 };
+        Ok(Self {
+            outer_radius: first.rho,
+            feed,
+            sampling: sampling.clone(),
+            sign,
+            theta0: first.theta,
+            zones: Vec::new(),
+            explicit: Some(points.into()),
         })
     }
 
@@ -307,6 +388,7 @@ impl Spiral {
             sign: direction.sign(),
             theta0,
             zones: kept,
+            explicit: None,
         })
     }
 
@@ -347,7 +429,10 @@ impl Spiral {
 
     /// Number of revolutions from the start to the centre.
     pub fn revolutions(&self) -> f64 {
-        self.start_radius_mm() / self.feed
+        match &self.explicit {
+            Some(p) => (p[p.len() - 1].theta - p[0].theta).abs() / TAU,
+            None => self.start_radius_mm() / self.feed,
+        }
     }
 
     fn angle_steps(&self, n: u32) -> u64 {
@@ -360,6 +445,9 @@ impl Spiral {
     /// The number of points (exact for constant angle, an estimate within a few points for
     /// constant arc), for progress bars.
     pub fn point_count_hint(&self) -> u64 {
+        if let Some(p) = &self.explicit {
+            return p.len() as u64;
+        }
         match self.sampling {
             Sampling::ConstantAngle { points_per_rev } => self.angle_steps(points_per_rev) + 1,
             Sampling::ConstantArc {
@@ -373,7 +461,7 @@ impl Spiral {
                 let arc = arc_length(b, self.outer_radius / b) - arc_length(b, rho_cap / b);
                 ((arc / arc_length_mm).ceil() + (rho_cap / b / cap).ceil()) as u64 + 1
             }
-            Sampling::Hcaa { .. } | Sampling::Adaptive { .. } => {
+            Sampling::Hcaa { .. } | Sampling::Adaptive { .. } | Sampling::SpaceSpiral { .. } => {
                 let b = self.feed / TAU;
                 let mut hi = self.outer_radius / b;
                 let mut n = 1.0;
@@ -390,6 +478,7 @@ impl Spiral {
     /// The points, from the outer radius to the centre, streamed.
     pub fn points(&self) -> SpiralPoints {
         let state = match self.sampling {
+            _ if self.explicit.is_some() => State::Explicit { k: 0 },
             Sampling::ConstantAngle { points_per_rev } => State::Angle {
                 k: 0,
                 steps: self.angle_steps(points_per_rev),
@@ -409,7 +498,7 @@ impl Spiral {
                     cap: max_angle_step_deg.to_radians(),
                 }
             }
-            Sampling::Hcaa { .. } | Sampling::Adaptive { .. } => {
+            Sampling::Hcaa { .. } | Sampling::Adaptive { .. } | Sampling::SpaceSpiral { .. } => {
                 let b = self.feed / TAU;
                 let phi = self.outer_radius / b;
                 State::Zoned {
@@ -479,6 +568,9 @@ enum State {
         phi: f64,
         zone: usize,
     },
+    Explicit {
+        k: usize,
+    },
 }
 
 /// Iterator over the points of a [`Spiral`].
@@ -498,6 +590,13 @@ impl Iterator for SpiralPoints {
         }
         let (t0, sign) = (self.spiral.theta0, self.spiral.sign);
         match &mut self.state {
+            State::Explicit { k } => {
+                let points = self.spiral.explicit.as_deref().unwrap_or(&[]);
+                let p = points.get(*k).copied();
+                *k += 1;
+                self.done = *k >= points.len();
+                p
+            }
             State::Angle { k, steps, n } => {
                 let remaining = (*steps - *k) as f64;
                 let p = SpiralPoint {

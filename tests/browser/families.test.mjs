@@ -92,10 +92,14 @@ describe('surface families on the page', () => {
     // A new plan clears the analysis of the old one.
     await setField(page, 'strategy.feed_mm_per_rev', '0.02');
     assert.equal(await page.locator('#analysis-maps').isVisible(), false);
-    // HCAA sampling from a PV tolerance, and two-way compensation with its X figures.
+    // HCAA sampling from a PV tolerance, the space spiral, and two-way compensation with its X
+    // figures.
     await replan(() => page.selectOption('[data-field="strategy.sampling.type"]', 'hcaa'));
     assert.equal((await currentJob()).strategy.sampling.pv_tolerance_um, 1);
     assert.ok(await page.locator('[data-field="strategy.sampling.pv_tolerance_um"]').isVisible());
+    await replan(() => page.selectOption('[data-field="strategy.sampling.type"]', 'space_spiral'));
+    assert.ok(await page.locator('[data-field="strategy.sampling.base_spans"]').isVisible());
+    assert.equal((await currentJob()).strategy.sampling.base_spans, 8);
     await replan(() => page.selectOption('[data-field="strategy.sampling.type"]', 'constant_angle'));
     await replan(() => page.selectOption('[data-field="strategy.compensation"]', 'two_way'));
     assert.match(await page.textContent('[data-key="X reversals"]'), /^\d/);

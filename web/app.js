@@ -208,6 +208,17 @@ function showAnalysis(m, stops) {
       ['Holder tilt', tool.holder_tilt_deg == null ? `none: ${tool.holder_tilt_note}` : `${fmt(tool.holder_tilt_deg, 3)}°`],
       ['Tool verdict', tool.verdict],
     );
+    const rev = m.report.revolution;
+    if (rev) {
+      const q = rev.quasi_revolution;
+      const ratio = (p) => (p ? fmt(p.ratio, 4) : '–');
+      rows.push(
+        ['Surface of revolution (paper 001)', `max α ${fmt(q.max_alpha_deg, 3)}° at (${fmt(q.at_xy_mm[0], 3)}, ${fmt(q.at_xy_mm[1], 3)}) mm: ${q.is_quasi_revolution ? '' : 'not '}quasi-revolution at ${fmt(q.alpha_lim_deg, 1)}°`],
+        ['Base surface fit', `RMS ${fmt(rev.base_fit_rms_um, 3)} µm, max ${fmt(rev.base_fit_max_um, 3)} µm`],
+        ['Pass spacing max/min', `space spiral ${ratio(rev.space_spiral)}, Z projection ${ratio(rev.z_projection)}`],
+      );
+    }
+    for (const note of m.report.notes) rows.push(['Note', note]);
   }
   $('analysis-table').replaceChildren(...rows.map(([k, v]) => {
     const tr = document.createElement('tr');

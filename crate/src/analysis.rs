@@ -1,8 +1,10 @@
 //! The accuracy analysis of a planned path, in one pass over it: the cutting linearization
 //! error between NC points ([`crate::linearization`], paper 000), the machined form predicted
-//! from the nose swept along the path ([`crate::predicted_form`]) and the tool angles the
-//! surface asks for ([`crate::tool_geometry`], paper 000). The command line prints it
-//! as JSON (`spiralcam analyse`); the page shows its figures and both maps.
+//! from the nose swept along the path ([`crate::predicted_form`]), the tool angles the surface
+//! asks for ([`crate::tool_geometry`], paper 000), and how far the part is from a surface of
+//! revolution with the pass spacing the space spiral would give
+//! ([`crate::space_spiral::survey`], paper 001). The command line prints it as JSON
+//! (`spiralcam analyse`); the page shows its figures and maps.
 //!
 //! All three assume one-way compensation (X on the spiral); a two-way job is refused.
 //!
@@ -19,6 +21,7 @@ use crate::linearization::{LinearizationCheck, LinearizationReport};
 use crate::plan::{PROGRESS_EVERY, PlanError, Planner, Progress};
 use crate::predicted_form::{FormPredictor, FormSettings, PredictedForm};
 use crate::raster::Raster;
+use crate::space_spiral::{Survey, survey};
 use crate::tool_geometry::{ToolGeometryCheck, ToolGeometryReport};
 use serde::Serialize;
 use std::ops::ControlFlow;
@@ -34,6 +37,9 @@ pub struct Analysis {
     pub predicted_form: Option<PredictedForm>,
     /// Critical tool angles, interference with the job's tool and the holder tilt that clears it.
     pub tool_geometry: ToolGeometryReport,
+    /// How close the part is to a surface of revolution and the pass spacing of the space
+    /// spiral against Z projection (paper 001); `None` where it cannot be computed (see `notes`).
+    pub revolution: Option<Survey>,
     /// Why an analysis is missing.
     pub notes: Vec<String>,
 }
@@ -82,11 +88,24 @@ impl Analysis {
             }
         }
         let _ = progress(Progress { done, total });
+        let job = planner.job();
+        let revolution = match survey(
+            planner.surface(),
+            job.part_radius_mm(),
+            job.strategy.feed_mm_per_rev,
+        ) {
+            Ok(s) => Some(s),
+            Err(e) => {
+                notes.push(format!("no surface-of-revolution survey: {e}"));
+                None
+            }
+        };
         Ok(Self {
             job: planner.job().name.clone(),
             linearization: linearization.finish(),
             predicted_form: form.map(FormPredictor::finish).transpose()?,
             tool_geometry: tool_geometry.finish(),
+            revolution,
             notes,
         })
     }

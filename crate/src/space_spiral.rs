@@ -40,6 +40,7 @@
 use crate::surface::nurbs::basis::KnotVector;
 use crate::surface::{Surface, UndefinedError};
 use nalgebra::{DMatrix, DVector};
+use serde::Serialize;
 use std::f64::consts::TAU;
 use thiserror::Error;
 
@@ -362,7 +363,7 @@ impl BaseSurface {
 }
 
 /// The result of the quasi-revolution test (eq 9).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct QuasiRevolution {
     /// `max α` over the polar grid, degrees.
     pub max_alpha_deg: f64,
@@ -581,7 +582,7 @@ pub fn z_projection(
 }
 
 /// Spacing between adjacent passes on the design surface.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct PassSpacing {
     /// Smallest 3-D distance between a point and the point one revolution further in, mm.
     pub min_mm: f64,
@@ -668,4 +669,47 @@ mod tests {
         let e = space_spiral(&s, &fit.base, 0.0, 16).unwrap_err();
         assert!(e.to_string().starts_with("feed_mm:"));
     }
+}
+
+/// Points per revolution of the paths [`survey`] compares (the spacing between passes does not
+/// depend on it).
+pub const SURVEY_POINTS_PER_REV: usize = 32;
+
+/// How far a part is from a surface of revolution, and what the space spiral would gain: the
+/// base fit's residual, the quasi-revolution test and the pass spacing of the space spiral
+/// against plain projection along Z at the job's feed.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Survey {
+    /// RMS of the design about the fitted base surface, µm.
+    pub base_fit_rms_um: f64,
+    /// Largest departure of the design from the base surface, µm.
+    pub base_fit_max_um: f64,
+    /// The quasi-revolution test against [`DEFAULT_ALPHA_LIM_DEG`].
+    pub quasi_revolution: QuasiRevolution,
+    /// Pass spacing of the space spiral (passes f apart along the base meridian).
+    pub space_spiral: Option<PassSpacing>,
+    /// Pass spacing of the plain spiral projected along Z (passes f apart in ρ).
+    pub z_projection: Option<PassSpacing>,
+}
+
+/// The [`Survey`] of `surface` over a part of radius `part_radius_mm` at a feed of `feed_mm`,
+/// with the default fit options.
+pub fn survey(
+    surface: &dyn Surface,
+    part_radius_mm: f64,
+    feed_mm: f64,
+) -> Result<Survey, SpaceSpiralError> {
+    let options = BaseFitOptions::default();
+    let fit = BaseSurface::fit(surface, part_radius_mm, &options)?;
+    let quasi = quasi_revolution(surface, &fit.base, &options, DEFAULT_ALPHA_LIM_DEG)?;
+    let n = SURVEY_POINTS_PER_REV;
+    let space = space_spiral(surface, &fit.base, feed_mm, n)?;
+    let plain = z_projection(surface, part_radius_mm, feed_mm, n)?;
+    Ok(Survey {
+        base_fit_rms_um: fit.rms_um,
+        base_fit_max_um: fit.max_um,
+        quasi_revolution: quasi,
+        space_spiral: pass_spacing(&space, n),
+        z_projection: pass_spacing(&plain, n),
+    })
 }

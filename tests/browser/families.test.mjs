@@ -89,6 +89,7 @@ describe('surface families on the page', () => {
     assert.equal(a.tool_geometry.tool.clearance_deg, 10);
     assert.ok(a.tool_geometry.verdict.length > 0);
     assert.equal(await page.textContent('[data-key="Tool verdict"]'), a.tool_geometry.verdict);
+    assert.match(await page.textContent('[data-key="Pass spacing max/min"]'), /space spiral \d.*Z projection \d/);
     // A new plan clears the analysis of the old one.
     await setField(page, 'strategy.feed_mm_per_rev', '0.02');
     assert.equal(await page.locator('#analysis-maps').isVisible(), false);

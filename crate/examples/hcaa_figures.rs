@@ -2,8 +2,9 @@
 //! points and NC size at PVtol 1 µm and 0.1 µm on the compound eye and the lens array jobs, and
 //! the linearization error of each path checked by `linearization::analyse`.
 //!
-//! `cargo run --release -p spiralcam --example hcaa_figures [scale]`: `scale` (default 1)
-//! multiplies the part diameter, to get figures quickly on a smaller part.
+//! `cargo run --release -p spiralcam --example hcaa_figures [scale] [job]`: `scale` (default 1)
+//! multiplies the part diameter, to get figures quickly on a smaller part; `job` (a part of the
+//! file name, e.g. `lens`) limits the run to one job.
 
 use spiralcam::hcaa;
 use spiralcam::job::Job;
@@ -14,9 +15,11 @@ use std::ops::ControlFlow;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let scale: f64 = std::env::args().nth(1).map_or(Ok(1.0), |s| s.parse())?;
+    let only = std::env::args().nth(2).unwrap_or_default();
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/jobs/");
     println!("job | PVtol µm | sampling | points | NC bytes | overcut µm | undercut µm | zones");
-    for name in ["compound-eye-paper000.json", "lens-array-paper004.json"] {
+    let jobs = ["compound-eye-paper000.json", "lens-array-paper004.json"];
+    for name in jobs.into_iter().filter(|n| n.contains(&only)) {
         let mut job = Job::from_json(&std::fs::read_to_string(format!("{dir}{name}"))?)?;
         job.part.diameter_mm *= scale;
         for tol in [1.0, 0.1] {

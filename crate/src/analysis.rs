@@ -24,6 +24,7 @@ use crate::raster::Raster;
 use crate::space_spiral::{Survey, survey};
 use crate::tool_geometry::{ToolGeometryCheck, ToolGeometryReport};
 use serde::Serialize;
+use std::borrow::Cow;
 use std::ops::ControlFlow;
 
 /// Both analyses of one path.
@@ -125,16 +126,17 @@ impl Analysis {
         &self.tool_geometry.map
     }
 
-    /// The predicted form error map, µm (all NaN without a prediction).
-    pub fn form_map(&self) -> Raster {
+    /// The predicted form error map, µm (all NaN, on the linearization map's grid, without a
+    /// prediction).
+    pub fn form_map(&self) -> Cow<'_, Raster> {
         match &self.predicted_form {
-            Some(f) => f.map.clone(),
+            Some(f) => Cow::Borrowed(&f.map),
             None => {
                 let lin = &self.linearization.map;
-                Raster {
+                Cow::Owned(Raster {
                     values: vec![f64::NAN; lin.values.len()],
-                    ..lin.clone()
-                }
+                    ..*lin
+                })
             }
         }
     }

@@ -42,6 +42,7 @@
 //! The arc is not cut at the part edge in two-way mode.
 
 use crate::field::{FieldError, in_range, non_negative};
+use crate::power_map::principal_curvatures;
 use crate::surface::{Line, Local, Surface, UndefinedError};
 use crate::tool_geometry::ToolAngles;
 use serde::{Deserialize, Serialize};
@@ -140,16 +141,10 @@ pub struct TwoWay {
 }
 
 /// The largest principal curvature of the surface at `l`, 1/mm, positive where the surface
-/// is concave towards the tool (+Z): the larger root of `κ² − 2Hκ + K = 0` with the Monge-patch
-/// `K = (f_xx f_yy − f_xy²)/W⁴`, `H = ((1+f_y²) f_xx − 2 f_x f_y f_xy + (1+f_x²) f_yy)/(2W³)`,
-/// `W² = 1 + f_x² + f_y²`.
+/// is concave towards the tool (+Z): `−κ₂` of [`crate::power_map::principal_curvatures`]
+/// (whose curvatures are positive where the surface is convex towards +Z).
 pub fn max_principal_curvature(l: &Local) -> f64 {
-    let w2 = 1.0 + l.zx * l.zx + l.zy * l.zy;
-    let w = w2.sqrt();
-    let k = (l.zxx * l.zyy - l.zxy * l.zxy) / (w2 * w2);
-    let h = ((1.0 + l.zy * l.zy) * l.zxx - 2.0 * l.zx * l.zy * l.zxy + (1.0 + l.zx * l.zx) * l.zyy)
-        / (2.0 * w2 * w);
-    h + (h * h - k).max(0.0).sqrt()
+    -principal_curvatures(l)[1]
 }
 
 /// Where the nose touches the surface for one spiral point.
@@ -313,9 +308,7 @@ impl NoseCompensator {
             at_arc_end: at_arc_end && best.g.abs() > 1e-12 * r,
         })
     }
-}
 
-impl NoseCompensator {
     /// Two-way compensation of the spiral point at radius `rho_s` and angle with cosine/sine
     /// `(c, s)`: the point is the contact, the nose centre lies r along the normal (see the
     /// module docs).

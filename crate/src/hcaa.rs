@@ -47,7 +47,7 @@
 use crate::compensate::{Compensation, NoseCompensator};
 use crate::field::FieldError;
 use crate::job::StrategySpec;
-use crate::plan::PlanError;
+use crate::plan::{PlanError, workers};
 use crate::spiral::{MAX_POINTS_PER_REV, Sampling, Spiral, Step, Zone, arc_length};
 use crate::surface::{Surface, UndefinedError};
 use std::f64::consts::{PI, TAU};
@@ -142,15 +142,6 @@ fn circle_step(
         m = want;
     }
     Ok(best)
-}
-
-/// Threads for the circles: every core natively, one in the browser.
-fn workers() -> usize {
-    if cfg!(target_arch = "wasm32") {
-        1
-    } else {
-        std::thread::available_parallelism().map_or(1, |n| n.get())
-    }
 }
 
 /// The largest step per radius band from 0 to `outer_radius_mm` for PVerr ≤ `tolerance_mm`.
@@ -358,8 +349,9 @@ pub fn spiral_length_mm(feed_mm: f64, inner_mm: f64, outer_mm: f64) -> f64 {
     arc_length(b, outer_mm / b) - arc_length(b, inner_mm / b)
 }
 
-/// The spiral of a strategy on `surface`: [`Spiral::new`] for constant angle and constant arc,
-/// zones from [`bands`] for `hcaa` and `adaptive`. Field errors are named from `strategy`.
+/// The spiral of an `hcaa` or `adaptive` strategy on `surface`: zones from [`bands`] (any other
+/// sampling is refused: [`crate::plan::spiral`] picks the builder). Field errors are named from
+/// `strategy`.
 pub fn spiral(
     outer_radius_mm: f64,
     strategy: &StrategySpec,
@@ -372,22 +364,13 @@ pub fn spiral(
         Sampling::Hcaa { pv_tolerance_um } | Sampling::Adaptive { pv_tolerance_um } => {
             pv_tolerance_um
         }
-        Sampling::SpaceSpiral {
-            points_per_rev,
-            base_spans,
-        } => {
-            return space_spiral(outer_radius_mm, st, surface, points_per_rev, base_spans)
-                .map_err(|e| within(e).into());
-        }
         _ => {
-            return Ok(Spiral::new(
-                outer_radius_mm,
-                st.feed_mm_per_rev,
-                &st.sampling,
-                st.direction,
-                st.start_angle_deg,
-            )
-            .map_err(within)?);
+            return Err(within(FieldError::new(
+                "sampling.type",
+                format!("{:?}", st.sampling),
+                "is not hcaa or adaptive: plan it with spiralcam::plan::spiral",
+            ))
+            .into());
         }
     };
     if st.compensation == Compensation::TwoWay {
@@ -434,94 +417,6 @@ pub fn spiral(
         st.start_angle_deg,
     )
     .map_err(within)?)
-}
-
-/// The `space_spiral` sampling: fits the base surface over the outer radius, lays the space
-/// spiral (passes f apart along the base meridian, N points per revolution, oriented by the
-/// strategy's start angle and direction, a last point at s = 0 added where the constant-angle
-/// steps miss it) and takes the XY of the projected design points as the spiral points, θ
-/// unwrapped within half a turn of the spiral's own angle. The points are held in memory.
-fn space_spiral(
-    outer_radius_mm: f64,
-    st: &StrategySpec,
-    surface: &dyn Surface,
-    points_per_rev: u32,
-    base_spans: u32,
-) -> Result<Spiral, FieldError> {
-    use crate::space_spiral::{BaseFitOptions, BaseSurface, space_point, space_spiral_count};
-    use crate::spiral::{MAX_EXPLICIT_POINTS, SpiralPoint};
-    if !(3..=MAX_POINTS_PER_REV).contains(&points_per_rev) {
-        return Err(FieldError::new(
-            "sampling.points_per_rev",
-            points_per_rev,
-            format!("must lie in [3, {MAX_POINTS_PER_REV}]"),
-        ));
-    }
-    if !(1..=64).contains(&base_spans) {
-        return Err(FieldError::new(
-            "sampling.base_spans",
-            base_spans,
-            "must lie in [1, 64]",
-        ));
-    }
-    let feed = crate::field::positive("feed_mm_per_rev", st.feed_mm_per_rev)?;
-    let theta0 = crate::field::finite("start_angle_deg", st.start_angle_deg)?.to_radians();
-    let fail = |e: crate::space_spiral::SpaceSpiralError| {
-        FieldError::new("sampling", "space_spiral", e.to_string())
-    };
-    let spans = base_spans as usize;
-    let options = BaseFitOptions {
-        spans,
-        rings: (2 * (spans + 2)).max(64),
-        angles: 64,
-    };
-    let base = BaseSurface::fit(surface, outer_radius_mm, &options)
-        .map_err(fail)?
-        .base;
-    let n = points_per_rev as usize;
-    let total = base.total_arc_length();
-    let count = space_spiral_count(&base, feed, n);
-    // The last constant-angle point lies at s = 0 or a centre point is added.
-    let exact_end = total - feed * (count - 1) as f64 / n as f64 <= 1e-12 * total.max(1.0);
-    let planned = count as u64 + u64::from(!exact_end);
-    if planned > MAX_EXPLICIT_POINTS {
-        return Err(FieldError::new(
-            "sampling.points_per_rev",
-            points_per_rev,
-            format!(
-                "with this feed gives {planned} points; a space spiral is held in memory (16 bytes a point) and at most {MAX_EXPLICIT_POINTS} are planned"
-            ),
-        ));
-    }
-    let sign = st.direction.sign();
-    let point = |s: f64, theta: f64| -> Result<SpiralPoint, FieldError> {
-        let polar = theta0 + sign * theta;
-        let p = space_point(surface, &base, s, theta, polar).map_err(fail)?;
-        let rho = p.design[0].hypot(p.design[1]);
-        let dphi = if rho > 0.0 {
-            let d = p.design[1].atan2(p.design[0]) - polar;
-            d - TAU * (d / TAU).round()
-        } else {
-            0.0
-        };
-        Ok(SpiralPoint {
-            rho,
-            theta: polar + dphi,
-        })
-    };
-    let mut points = Vec::with_capacity(planned as usize);
-    for k in 0..count {
-        let theta = TAU * k as f64 / n as f64;
-        points.push(point(total - feed * k as f64 / n as f64, theta)?);
-    }
-    if !exact_end {
-        points.push(point(0.0, TAU * total / feed)?);
-    }
-    if let Some(last) = points.last_mut() {
-        // The axis point projects along +Z onto the axis.
-        last.rho = 0.0;
-    }
-    Spiral::from_points(feed, &st.sampling, points)
 }
 
 #[cfg(test)]

@@ -1,14 +1,14 @@
-//! The planner: job → surface → spiral → one-way compensation → NC, CSV and report, as one
-//! stream. [`Planner::points`] yields the path one point at a time; [`Planner::run`] compensates
-//! batches of 16 384 points on all cores (natively; one thread in the browser) and hands them in
-//! order to every sink, so memory stays flat whatever the point count and the output does not
-//! depend on the number of threads; only the display copy ([`crate::display::DisplayPath`])
-//! keeps points, decimated to a fixed budget.
+//! The planner: job → surface → spiral ([`spiral`]) → one-way compensation → NC, CSV and
+//! report, as one stream. [`Planner::points`] yields the path one point at a time;
+//! [`Planner::run`] compensates batches of 16 384 points on all cores (natively; one thread in
+//! the browser) and hands them in order to every sink, so memory stays flat whatever the point
+//! count and the output does not depend on the number of threads; only the display copy
+//! ([`crate::display::DisplayPath`]) keeps points, decimated to a fixed budget.
 
 use crate::compensate::{Compensation, NoseCompensator};
 use crate::display::DisplayPath;
 use crate::field::FieldError;
-use crate::job::{Job, JobError};
+use crate::job::{Job, JobError, StrategySpec};
 use crate::nc::{CsvWriter, Header, NcError, NcWriter};
 use crate::reach::{self, Reach};
 use crate::report::{Report, Stats};
@@ -110,12 +110,44 @@ pub const PROGRESS_EVERY: u64 = 65_536;
 /// Points compensated per batch before they are written: bounds the memory of a run.
 const BATCH: usize = 16_384;
 
-/// Threads that compensate a batch: every core natively, one in the browser.
-fn workers() -> usize {
+/// Threads for parallel work (a batch to compensate, the circles of [`crate::hcaa::bands`]):
+/// every core natively, one in the browser.
+pub(crate) fn workers() -> usize {
     if cfg!(target_arch = "wasm32") {
         1
     } else {
         std::thread::available_parallelism().map_or(1, |n| n.get())
+    }
+}
+
+/// The spiral of a strategy on `surface`, by the builder of its sampling: [`Spiral::new`] for
+/// constant angle and constant arc, [`crate::hcaa::spiral`] for `hcaa` and `adaptive`,
+/// [`crate::space_spiral::spiral`] for `space_spiral`. Field errors are named from `strategy`.
+pub fn spiral(
+    outer_radius_mm: f64,
+    strategy: &StrategySpec,
+    surface: &dyn Surface,
+    nose: &NoseCompensator,
+) -> Result<Spiral, PlanError> {
+    let st = strategy;
+    let within = |e: FieldError| PlanError::from(e.within("strategy"));
+    match st.sampling {
+        Sampling::ConstantAngle { .. } | Sampling::ConstantArc { .. } => Spiral::new(
+            outer_radius_mm,
+            st.feed_mm_per_rev,
+            &st.sampling,
+            st.direction,
+            st.start_angle_deg,
+        )
+        .map_err(within),
+        Sampling::Hcaa { .. } | Sampling::Adaptive { .. } => {
+            crate::hcaa::spiral(outer_radius_mm, st, surface, nose)
+        }
+        Sampling::SpaceSpiral {
+            points_per_rev,
+            base_spans,
+        } => crate::space_spiral::spiral(outer_radius_mm, st, surface, points_per_rev, base_spans)
+            .map_err(within),
     }
 }
 
@@ -137,7 +169,7 @@ impl Planner {
         let nose =
             NoseCompensator::new(&job.tool, surface.feature_length_mm(), job.part_radius_mm())
                 .map_err(|e| e.within("tool"))?;
-        let spiral = crate::hcaa::spiral(
+        let spiral = spiral(
             job.outer_radius_mm(),
             &job.strategy,
             surface.as_ref(),

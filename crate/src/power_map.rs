@@ -22,6 +22,7 @@
 //! positive power for a convex front, the ophthalmic convention.
 
 use crate::field::{FieldError, in_range};
+use crate::raster::Raster;
 use crate::surface::{Local, PartDisc, Surface};
 
 /// Largest map side accepted, samples.
@@ -65,24 +66,15 @@ impl SurfacePower {
 
 /// Mean power and cylinder sampled on a square grid over the part, for drawing as maps.
 ///
-/// Sample (i, j), i, j = 0 … size − 1, lies at `x = x0_mm + i·step_mm`, `y = y0_mm + j·step_mm`
-/// and is stored at index `j·size + i` (rows of constant y, x increasing along a row). The grid
-/// spans the part's bounding square edge to edge. Samples outside the part disc, and inside it
-/// where the surface has no value, are NaN.
+/// Both maps share one grid, which spans the part's bounding square edge to edge (sample (i, j)
+/// at [`Raster::position`], stored at `j·size + i`). Samples outside the part disc, and inside
+/// it where the surface has no value, are NaN.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PowerMap {
-    /// Samples per side.
-    pub size: usize,
-    /// x of column 0, mm.
-    pub x0_mm: f64,
-    /// y of row 0, mm.
-    pub y0_mm: f64,
-    /// Grid spacing, mm.
-    pub step_mm: f64,
     /// Mean power per sample, dioptres (NaN outside the part or where undefined).
-    pub mean_d: Vec<f64>,
+    pub mean_d: Raster,
     /// Cylinder per sample, dioptres (NaN outside the part or where undefined).
-    pub cylinder_d: Vec<f64>,
+    pub cylinder_d: Raster,
     /// Samples inside the part where the surface had no value.
     pub undefined: usize,
 }
@@ -105,29 +97,29 @@ impl PowerMap {
             ));
         }
         let radius = in_range("part.radius_mm", part.radius_mm, f64::MIN_POSITIVE, 1e6)?;
-        let step = 2.0 * radius / (size - 1) as f64;
-        let mut map = Self {
-            size,
+        let grid = Raster {
             x0_mm: part.x_mm - radius,
             y0_mm: part.y_mm - radius,
-            step_mm: step,
-            mean_d: vec![f64::NAN; size * size],
-            cylinder_d: vec![f64::NAN; size * size],
+            ..Raster::over_part(radius, size)
+        };
+        let mut map = Self {
+            mean_d: grid.clone(),
+            cylinder_d: grid,
             undefined: 0,
         };
         // A sample on the rim counts as inside despite rounding of x0 + i·step.
         let inside = radius * (1.0 + 1e-12);
         for j in 0..size {
             for i in 0..size {
-                let (x, y) = map.position(i, j);
+                let (x, y) = map.mean_d.position(i, j);
                 if (x - part.x_mm).hypot(y - part.y_mm) > inside {
                     continue;
                 }
                 match surface.local(x, y) {
                     Ok(l) => {
                         let p = SurfacePower::from_local(&l, n);
-                        map.mean_d[j * size + i] = p.mean_d;
-                        map.cylinder_d[j * size + i] = p.cylinder_d;
+                        map.mean_d.values[j * size + i] = p.mean_d;
+                        map.cylinder_d.values[j * size + i] = p.cylinder_d;
                     }
                     Err(_) => map.undefined += 1,
                 }
@@ -136,33 +128,15 @@ impl PowerMap {
         Ok(map)
     }
 
-    /// The position (x, y) of sample (i, j), mm.
-    pub fn position(&self, i: usize, j: usize) -> (f64, f64) {
-        (
-            self.x0_mm + i as f64 * self.step_mm,
-            self.y0_mm + j as f64 * self.step_mm,
-        )
-    }
-
     /// Smallest and largest mean power over the defined samples, dioptres.
     pub fn mean_range_d(&self) -> Option<(f64, f64)> {
-        range(&self.mean_d)
+        self.mean_d.range()
     }
 
     /// Smallest and largest cylinder over the defined samples, dioptres.
     pub fn cylinder_range_d(&self) -> Option<(f64, f64)> {
-        range(&self.cylinder_d)
+        self.cylinder_d.range()
     }
-}
-
-fn range(values: &[f64]) -> Option<(f64, f64)> {
-    values
-        .iter()
-        .filter(|v| !v.is_nan())
-        .fold(None, |acc, &v| match acc {
-            None => Some((v, v)),
-            Some((lo, hi)) => Some((v.min(lo), v.max(hi))),
-        })
 }
 
 #[cfg(test)]
@@ -342,28 +316,33 @@ mod tests {
             y_mm: -2.0,
         };
         let map = PowerMap::sample(&s, part, 1.5, 25).unwrap();
-        assert_eq!(map.step_mm, 1.0);
-        assert_eq!(map.position(0, 0), (-11.0, -14.0));
-        assert_eq!(map.position(24, 24), (13.0, 10.0));
+        assert_eq!(map.mean_d.step_mm, 1.0);
+        assert_eq!(map.mean_d.position(0, 0), (-11.0, -14.0));
+        assert_eq!(map.mean_d.position(24, 24), (13.0, 10.0));
+        assert_eq!(map.cylinder_d.position(24, 24), (13.0, 10.0));
         let (mut outside, mut defined, mut undefined) = (0, 0, 0);
         for j in 0..25 {
             for i in 0..25 {
-                let (x, y) = map.position(i, j);
+                let (x, y) = map.mean_d.position(i, j);
                 let k = j * 25 + i;
                 let in_part = (x - 1.0).hypot(y + 2.0) <= 12.0;
                 let has_sag = x.hypot(y) < 10.0;
                 match (in_part, has_sag) {
                     (false, _) => {
-                        assert!(map.mean_d[k].is_nan() && map.cylinder_d[k].is_nan());
+                        assert!(map.mean_d.values[k].is_nan() && map.cylinder_d.values[k].is_nan());
                         outside += 1;
                     }
                     (true, true) => {
-                        assert!((map.mean_d[k] - 50.0).abs() < 1e-10, "{}", map.mean_d[k]);
-                        assert!(map.cylinder_d[k].abs() < 1e-10);
+                        assert!(
+                            (map.mean_d.values[k] - 50.0).abs() < 1e-10,
+                            "{}",
+                            map.mean_d.values[k]
+                        );
+                        assert!(map.cylinder_d.values[k].abs() < 1e-10);
                         defined += 1;
                     }
                     (true, false) => {
-                        assert!(map.mean_d[k].is_nan());
+                        assert!(map.mean_d.values[k].is_nan());
                         undefined += 1;
                     }
                 }

@@ -34,9 +34,12 @@
 //! [`pass_spacing`] measures the 3-D distance between a point and the point one revolution
 //! further in at the same angle, for either path.
 //!
-//! The planner uses it as the sampling `space_spiral` ([`crate::hcaa::spiral`] builds the
-//! spiral points from the projected design points).
+//! The planner uses it as the sampling `space_spiral` ([`spiral`] builds the spiral points
+//! from the projected design points).
 
+use crate::field::{FieldError, finite, positive};
+use crate::job::StrategySpec;
+use crate::spiral::{MAX_EXPLICIT_POINTS, Spiral, SpiralPoint, check_points_per_rev};
 use crate::surface::nurbs::basis::KnotVector;
 use crate::surface::{Surface, UndefinedError};
 use nalgebra::{DMatrix, DVector};
@@ -579,6 +582,85 @@ pub fn z_projection(
         });
     }
     Ok(out)
+}
+
+/// The spiral of the `space_spiral` sampling ([`crate::plan::spiral`] picks it): fits the base
+/// surface over the outer radius, lays the space spiral (passes f apart along the base meridian,
+/// N points per revolution, oriented by the strategy's start angle and direction, a last point
+/// at s = 0 added where the constant-angle steps miss it) and takes the XY of the projected
+/// design points as the spiral points, θ unwrapped within half a turn of the spiral's own angle.
+/// The points are held in memory. Field errors are named relative to the strategy.
+pub fn spiral(
+    outer_radius_mm: f64,
+    st: &StrategySpec,
+    surface: &dyn Surface,
+    points_per_rev: u32,
+    base_spans: u32,
+) -> Result<Spiral, FieldError> {
+    check_points_per_rev(points_per_rev)?;
+    if !(1..=64).contains(&base_spans) {
+        return Err(FieldError::new(
+            "sampling.base_spans",
+            base_spans,
+            "must lie in [1, 64]",
+        ));
+    }
+    let feed = positive("feed_mm_per_rev", st.feed_mm_per_rev)?;
+    let theta0 = finite("start_angle_deg", st.start_angle_deg)?.to_radians();
+    let fail = |e: SpaceSpiralError| FieldError::new("sampling", "space_spiral", e.to_string());
+    let spans = base_spans as usize;
+    let options = BaseFitOptions {
+        spans,
+        rings: (2 * (spans + 2)).max(64),
+        angles: 64,
+    };
+    let base = BaseSurface::fit(surface, outer_radius_mm, &options)
+        .map_err(fail)?
+        .base;
+    let n = points_per_rev as usize;
+    let total = base.total_arc_length();
+    let count = space_spiral_count(&base, feed, n);
+    // The last constant-angle point lies at s = 0 or a centre point is added.
+    let exact_end = total - feed * (count - 1) as f64 / n as f64 <= 1e-12 * total.max(1.0);
+    let planned = count as u64 + u64::from(!exact_end);
+    if planned > MAX_EXPLICIT_POINTS {
+        return Err(FieldError::new(
+            "sampling.points_per_rev",
+            points_per_rev,
+            format!(
+                "with this feed gives {planned} points; a space spiral is held in memory (16 bytes a point) and at most {MAX_EXPLICIT_POINTS} are planned"
+            ),
+        ));
+    }
+    let sign = st.direction.sign();
+    let point = |s: f64, theta: f64| -> Result<SpiralPoint, FieldError> {
+        let polar = theta0 + sign * theta;
+        let p = space_point(surface, &base, s, theta, polar).map_err(fail)?;
+        let rho = p.design[0].hypot(p.design[1]);
+        let dphi = if rho > 0.0 {
+            let d = p.design[1].atan2(p.design[0]) - polar;
+            d - TAU * (d / TAU).round()
+        } else {
+            0.0
+        };
+        Ok(SpiralPoint {
+            rho,
+            theta: polar + dphi,
+        })
+    };
+    let mut points = Vec::with_capacity(planned as usize);
+    for k in 0..count {
+        let theta = TAU * k as f64 / n as f64;
+        points.push(point(total - feed * k as f64 / n as f64, theta)?);
+    }
+    if !exact_end {
+        points.push(point(0.0, TAU * total / feed)?);
+    }
+    if let Some(last) = points.last_mut() {
+        // The axis point projects along +Z onto the axis.
+        last.rho = 0.0;
+    }
+    Spiral::from_points(feed, &st.sampling, points)
 }
 
 /// Spacing between adjacent passes on the design surface.

@@ -19,6 +19,9 @@
 //! that of the plain sampling; a step that would end in a zone further in takes the smaller of
 //! the two zones' steps, so every segment obeys the rule of each zone it touches. The path starts
 //! at the outer radius and its last step ends exactly at the centre.
+//!
+//! [`crate::plan::spiral`] picks the builder of each sampling: [`Spiral::new`],
+//! [`crate::hcaa::spiral`] or [`crate::space_spiral::spiral`].
 
 use crate::field::{FieldError, finite, in_range, positive};
 use serde::{Deserialize, Serialize};
@@ -59,8 +62,8 @@ pub enum Sampling {
     /// The space Archimedean spiral (paper 001, [`crate::space_spiral`]): passes `f` apart along
     /// the meridian of a best-fit surface of revolution, `points_per_rev` points per revolution
     /// at constant angle, projected onto the design surface along the base normal; the XY of the
-    /// projected points are the spiral points. Built by [`crate::hcaa::spiral`] and held in
-    /// memory (16 bytes a point, at most [`MAX_EXPLICIT_POINTS`]).
+    /// projected points are the spiral points. Built by [`crate::space_spiral::spiral`] and held
+    /// in memory (16 bytes a point, at most [`MAX_EXPLICIT_POINTS`]).
     SpaceSpiral {
         /// Points per revolution N, 3 … 1 000 000.
         points_per_rev: u32,
@@ -219,13 +222,7 @@ impl Spiral {
             checked_geometry(outer_radius_mm, feed_mm_per_rev, start_angle_deg)?;
         match *sampling {
             Sampling::ConstantAngle { points_per_rev } => {
-                if !(3..=MAX_POINTS_PER_REV).contains(&points_per_rev) {
-                    return Err(FieldError::new(
-                        "sampling.points_per_rev",
-                        points_per_rev,
-                        format!("must lie in [3, {MAX_POINTS_PER_REV}]"),
-                    ));
-                }
+                check_points_per_rev(points_per_rev)?;
             }
             Sampling::ConstantArc {
                 arc_length_mm,
@@ -243,29 +240,16 @@ impl Spiral {
             }
             Sampling::Hcaa { pv_tolerance_um } | Sampling::Adaptive { pv_tolerance_um } => {
                 check_tolerance(pv_tolerance_um)?;
-                return Err(FieldError::new(
-                    "sampling.type",
-                    "hcaa/adaptive",
-                    "depends on the surface: plan it with spiralcam::hcaa::spiral (the planner does)",
-                ));
+                return Err(surface_dependent("hcaa/adaptive"));
             }
-            Sampling::SpaceSpiral { .. } => {
-                return Err(FieldError::new(
-                    "sampling.type",
-                    "space_spiral",
-                    "depends on the surface: plan it with spiralcam::hcaa::spiral (the planner does)",
-                ));
-            }
+            Sampling::SpaceSpiral { .. } => return Err(surface_dependent("space_spiral")),
         }
-        Self::checked(Self {
-            outer_radius,
-            feed,
-            sampling: sampling.clone(),
-            sign: direction.sign(),
-            theta0,
-            zones: Vec::new(),
-            explicit: None,
-        })
+        Self::planar(
+            (outer_radius, feed, theta0),
+            sampling,
+            direction,
+            Vec::new(),
+        )
     }
 
     /// A spiral through the given points (outside in; `theta` cumulative, already including the
@@ -381,15 +365,7 @@ impl Spiral {
                 ));
             }
         }
-        Self::checked(Self {
-            outer_radius,
-            feed,
-            sampling: sampling.clone(),
-            sign: direction.sign(),
-            theta0,
-            zones: kept,
-            explicit: None,
-        })
+        Self::planar((outer_radius, feed, theta0), sampling, direction, kept)
     }
 
     /// The zones of a surface-dependent spiral (empty for constant angle and constant arc).
@@ -397,8 +373,23 @@ impl Spiral {
         &self.zones
     }
 
-    fn checked(spiral: Self) -> Result<Self, FieldError> {
-        let feed = spiral.feed;
+    /// A spiral computed from its parameters (not [`Spiral::from_points`]), from the checked
+    /// geometry of [`checked_geometry`]; refused above [`MAX_POINTS`].
+    fn planar(
+        (outer_radius, feed, theta0): (f64, f64, f64),
+        sampling: &Sampling,
+        direction: Direction,
+        zones: Vec<Zone>,
+    ) -> Result<Self, FieldError> {
+        let spiral = Self {
+            outer_radius,
+            feed,
+            sampling: sampling.clone(),
+            sign: direction.sign(),
+            theta0,
+            zones,
+            explicit: None,
+        };
         let points = spiral.point_count_hint();
         if points > MAX_POINTS {
             return Err(FieldError::new(
@@ -515,6 +506,28 @@ impl Spiral {
             done: false,
         }
     }
+}
+
+/// Points per revolution N, checked: 3 … [`MAX_POINTS_PER_REV`].
+pub(crate) fn check_points_per_rev(points_per_rev: u32) -> Result<u32, FieldError> {
+    if (3..=MAX_POINTS_PER_REV).contains(&points_per_rev) {
+        Ok(points_per_rev)
+    } else {
+        Err(FieldError::new(
+            "sampling.points_per_rev",
+            points_per_rev,
+            format!("must lie in [3, {MAX_POINTS_PER_REV}]"),
+        ))
+    }
+}
+
+/// The refusal of [`Spiral::new`] for a sampling that depends on the surface.
+fn surface_dependent(sampling: &str) -> FieldError {
+    FieldError::new(
+        "sampling.type",
+        sampling,
+        "depends on the surface: plan it with spiralcam::plan::spiral (the planner does)",
+    )
 }
 
 fn check_tolerance(pv_tolerance_um: f64) -> Result<f64, FieldError> {

@@ -261,25 +261,30 @@ impl PowerMaps {
     /// Samples per side of the square grid.
     #[wasm_bindgen(getter)]
     pub fn size(&self) -> usize {
-        self.map.size
+        self.map.mean_d.size
     }
 
     /// Mean power, D, row by row from −y to +y (NaN outside the part).
     #[wasm_bindgen(getter)]
     pub fn mean_d(&self) -> Vec<f32> {
-        self.map.mean_d.iter().map(|&v| v as f32).collect()
+        self.map.mean_d.values.iter().map(|&v| v as f32).collect()
     }
 
     /// Cylinder, D (NaN outside the part).
     #[wasm_bindgen(getter)]
     pub fn cylinder_d(&self) -> Vec<f32> {
-        self.map.cylinder_d.iter().map(|&v| v as f32).collect()
+        self.map
+            .cylinder_d
+            .values
+            .iter()
+            .map(|&v| v as f32)
+            .collect()
     }
 
     /// Grid spacing, mm.
     #[wasm_bindgen(getter)]
     pub fn step_mm(&self) -> f64 {
-        self.map.step_mm
+        self.map.mean_d.step_mm
     }
 }
 

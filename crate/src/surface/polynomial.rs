@@ -45,6 +45,11 @@ impl Bivariate {
         self.degree
     }
 
+    /// The non-zero terms (i, j, aᵢⱼ), as given.
+    pub fn terms(&self) -> &[(usize, usize, f64)] {
+        &self.terms
+    }
+
     /// `[P, P_u, P_v, P_uu, P_uv, P_vv]` at (u, v).
     pub fn eval(&self, u: f64, v: f64) -> [f64; 6] {
         let (pu, pv) = (powers(u, self.degree), powers(v, self.degree));

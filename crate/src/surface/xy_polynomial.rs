@@ -42,7 +42,6 @@ pub struct XyPolynomialSpec {
 pub struct XyPolynomial {
     base: Asphere,
     norm: f64,
-    terms: Vec<(usize, usize, f64)>,
     poly: Bivariate,
 }
 
@@ -71,12 +70,10 @@ impl XyPolynomial {
             let c = finite(&format!("{field}.coefficient_mm"), t.coefficient_mm)?;
             terms.push((t.x as usize, t.y as usize, c));
         }
-        let poly = Bivariate::new(terms.clone());
         Ok(Self {
             base,
             norm,
-            terms,
-            poly,
+            poly: Bivariate::new(terms),
         })
     }
 
@@ -101,7 +98,8 @@ impl Surface for XyPolynomial {
 
     fn describe(&self) -> String {
         let terms: Vec<String> = self
-            .terms
+            .poly
+            .terms()
             .iter()
             .map(|(i, j, c)| format!("x{i}y{j} {c:e}"))
             .collect();

@@ -86,6 +86,17 @@ function bytes(n) {
   return n >= 1e6 ? `${fmt(n / 1e6, 2)} MB` : `${fmt(n / 1e3, 1)} kB`;
 }
 
+/** Table rows `<th>key</th><td data-key="key">value</td>` of [key, value] pairs. */
+function keyRows(rows) {
+  return rows.map(([k, v]) => {
+    const tr = document.createElement('tr');
+    const td = Object.assign(document.createElement('td'), { textContent: v });
+    td.dataset.key = k;
+    tr.append(Object.assign(document.createElement('th'), { textContent: k }), td);
+    return tr;
+  });
+}
+
 /** The report panel. */
 function showReport(report, job) {
   const zVelocity = report.max_dz_dtheta_um_per_deg * 360 * job.machine.spindle_rpm / 60 / 1000;
@@ -110,17 +121,7 @@ function showReport(report, job) {
       ['Two-way loops', loopAt ? `${fmt(report.two_way_loops, 0)} (${fmt(report.two_way_loop_points, 0)} points), first at ρ ${fmt(loopAt.rho_mm, 3)} mm` : '0'],
     );
   }
-  const table = $('report-table');
-  table.replaceChildren(...rows.map(([k, v]) => {
-    const tr = document.createElement('tr');
-    const th = document.createElement('th');
-    th.textContent = k;
-    const td = document.createElement('td');
-    td.textContent = v;
-    td.dataset.key = k;
-    tr.append(th, td);
-    return tr;
-  }));
+  $('report-table').replaceChildren(...keyRows(rows));
   const warnings = $('warnings');
   warnings.replaceChildren(...report.warnings.map((w) => Object.assign(document.createElement('li'), { textContent: w })));
   const zones = $('zones');
@@ -174,14 +175,18 @@ function drawMap(canvas, values, size, stops) {
   return [lo, hi];
 }
 
+/** Draws the map `map-<name>` and writes its range, `digits` decimals, under it. */
+function showMap(name, values, size, stops, digits, unit) {
+  const [lo, hi] = drawMap($(`map-${name}`), values, size, stops);
+  $(`map-${name}-range`).textContent = `${fmt(lo, digits)} … ${fmt(hi, digits)} ${unit}`;
+}
+
 /** The power maps panel (progressive lenses). */
 function showMaps(maps, stops) {
   $('maps').hidden = !maps;
   if (!maps) return;
-  for (const [name, values] of [['mean', maps.mean], ['cylinder', maps.cylinder]]) {
-    const [lo, hi] = drawMap($(`map-${name}`), values, maps.size, stops);
-    $(`map-${name}-range`).textContent = `${fmt(lo, 2)} … ${fmt(hi, 2)} D`;
-  }
+  showMap('mean', maps.mean, maps.size, stops, 2, 'D');
+  showMap('cylinder', maps.cylinder, maps.size, stops, 2, 'D');
 }
 
 /** The accuracy panel: linearization error, predicted form and tool angles, figures and maps. */
@@ -220,19 +225,12 @@ function showAnalysis(m, stops) {
     }
     for (const note of m.report.notes) rows.push(['Note', note]);
   }
-  $('analysis-table').replaceChildren(...rows.map(([k, v]) => {
-    const tr = document.createElement('tr');
-    const td = Object.assign(document.createElement('td'), { textContent: v });
-    td.dataset.key = k;
-    tr.append(Object.assign(document.createElement('th'), { textContent: k }), td);
-    return tr;
-  }));
+  $('analysis-table').replaceChildren(...keyRows(rows));
   $('analysis-maps').hidden = !m;
   if (!m) return;
-  for (const [name, values, unit] of [['linearization', m.linearization, 'µm'], ['form', m.form, 'µm'], ['clearance', m.clearance, '°']]) {
-    const [lo, hi] = drawMap($(`map-${name}`), values, m.size, stops);
-    $(`map-${name}-range`).textContent = `${fmt(lo, 4)} … ${fmt(hi, 4)} ${unit}`;
-  }
+  showMap('linearization', m.linearization, m.size, stops, 4, 'µm');
+  showMap('form', m.form, m.size, stops, 4, 'µm');
+  showMap('clearance', m.clearance, m.size, stops, 4, '°');
 }
 
 /** The colour legend beside the view. */
@@ -305,9 +303,10 @@ function bindGestures(canvas, viewer, redraw) {
 async function main() {
   await init();
   $('version').textContent = `v${version()}`;
-  $('legend-bar').style.background = colormap_css();
+  const scale = colormap_css();
+  $('legend-bar').style.background = scale;
   const stops = colormap_stops();
-  for (const bar of document.querySelectorAll('.maps .bar')) bar.style.background = colormap_css().replace('to top', 'to right');
+  for (const bar of document.querySelectorAll('.maps .bar')) bar.style.background = scale.replace('to top', 'to right');
 
   const canvas = $('view');
   let viewer = null;

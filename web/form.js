@@ -320,6 +320,23 @@ function row(path, label, control, unit, hint) {
   return el('div', { class: 'row' }, lab, control, u, err);
 }
 
+/** A row spanning the form's width (text areas, files). */
+function wide(r) {
+  r.classList.add('wide');
+  return r;
+}
+
+/** The object a radius row edits (at `object` within the surface, '' for the surface itself)
+ * and its two keys, of which it holds exactly one: `radius<suffix>_mm`, `curvature<suffix>_per_mm`. */
+function radiusOf(surface, object, suffix) {
+  return [object ? get(surface, object) : surface, `radius${suffix}_mm`, `curvature${suffix}_per_mm`];
+}
+
+/** The state line of a loaded data file. */
+function loaded(name, text) {
+  return `${name}: ${(text.length / 1024).toFixed(1)} kB`;
+}
+
 function select(options, labels) {
   const s = el('select');
   options.forEach((o, i) => s.append(el('option', { value: o }, labels ? labels[i] : o.replaceAll('_', ' '))));
@@ -429,12 +446,10 @@ export class JobForm {
     return box;
   }
 
-  /** A vertex radius or curvature (exactly one of `radius<suffix>_mm`, `curvature<suffix>_per_mm`)
-   * of the object at `f.object` within the surface ('' for the surface itself). */
+  /** A vertex radius or curvature of the object at `f.object` (see `radiusOf`). */
   radiusRow(f, s) {
-    const obj = f.object ? get(s, f.object) : s;
     const sfx = f.suffix || '';
-    const [rKey, cKey] = [`radius${sfx}_mm`, `curvature${sfx}_per_mm`];
+    const [obj, rKey, cKey] = radiusOf(s, f.object, sfx);
     const byRadius = obj[cKey] === undefined;
     const which = select([rKey, cKey], ['radius (mm)', 'curvature (1/mm)']);
     which.value = byRadius ? rKey : cKey;
@@ -464,12 +479,10 @@ export class JobForm {
 
   /** A list of numbers typed with commas or spaces, e.g. Zernike coefficients. */
   listRow(f, s) {
-    const t = el('textarea', { rows: 3, spellcheck: false, placeholder: f.placeholder || '' });
+    const t = el('textarea', { rows: 3, spellcheck: false });
     t.value = (s[f.key] || []).join(', ');
     t.dataset.kind = 'list';
-    const r = row(`surface.${f.key}`, f.label, t, f.unit, f.hint);
-    r.classList.add('wide');
-    return r;
+    return wide(row(`surface.${f.key}`, f.label, t, f.unit, f.hint));
   }
 
   /** A JSON editor for a structured value (composite terms, a NURBS control net). */
@@ -477,9 +490,7 @@ export class JobForm {
     const t = el('textarea', { rows: f.rows || 10, spellcheck: false, class: 'json' });
     t.value = JSON.stringify(get(s, f.key) ?? null, null, 2);
     t.dataset.kind = 'json';
-    const r = row(`surface.${f.key}`, f.label, t, '', f.hint);
-    r.classList.add('wide');
-    return r;
+    return wide(row(`surface.${f.key}`, f.label, t, '', f.hint));
   }
 
   /** A data file read in the browser and sent as text (the command line reads paths). */
@@ -488,10 +499,9 @@ export class JobForm {
     const input = el('input', { type: 'file', accept: f.accept || '' });
     input.dataset.kind = 'file';
     const what = file.text !== undefined
-      ? `${file.name || 'loaded'}: ${(file.text.length / 1024).toFixed(1)} kB`
+      ? loaded(file.name || 'loaded', file.text)
       : file.path ? `${file.path} (not loaded: choose the file)` : 'no file';
-    const r = row(`surface.${f.key}`, f.label, input, '', f.hint);
-    r.classList.add('wide');
+    const r = wide(row(`surface.${f.key}`, f.label, input, '', f.hint));
     r.append(el('span', { class: 'file-state' }, what));
     return r;
   }
@@ -548,9 +558,7 @@ export class JobForm {
       this.job.surface = { type: t.value, ...structuredClone(FAMILY_DEFAULTS[t.value]) };
       this.show(this.job);
     } else if (t.dataset.role === 'radius-kind') {
-      const obj = t.dataset.object ? get(this.job.surface, t.dataset.object) : this.job.surface;
-      const sfx = t.dataset.suffix;
-      const [rKey, cKey] = [`radius${sfx}_mm`, `curvature${sfx}_per_mm`];
+      const [obj, rKey, cKey] = radiusOf(this.job.surface, t.dataset.object, t.dataset.suffix);
       const v = obj[rKey] ?? obj[cKey];
       delete obj[rKey];
       delete obj[cKey];
@@ -568,7 +576,7 @@ export class JobForm {
         this.job.surface[key] = { text };
         this.show(this.job);
         this.root.querySelector(`[data-field="${t.dataset.field}"]`)?.closest('.row')
-          ?.querySelector('.file-state')?.replaceChildren(`${file.name}: ${(text.length / 1024).toFixed(1)} kB`);
+          ?.querySelector('.file-state')?.replaceChildren(loaded(file.name, text));
         this.onChange();
       });
       return;
@@ -611,10 +619,8 @@ export class JobForm {
       case 'bool': set(this.job, path, t.value === '' ? undefined : t.value === 'true'); break;
       case 'number': set(this.job, path, t.dataset.optional && t.value.trim() === '' ? undefined : number(t.value)); break;
       case 'radius-value': {
-        const obj = t.dataset.object ? get(this.job.surface, t.dataset.object) : this.job.surface;
-        const sfx = t.dataset.suffix;
-        const key = obj[`curvature${sfx}_per_mm`] === undefined ? `radius${sfx}_mm` : `curvature${sfx}_per_mm`;
-        obj[key] = number(t.value);
+        const [obj, rKey, cKey] = radiusOf(this.job.surface, t.dataset.object, t.dataset.suffix);
+        obj[obj[cKey] === undefined ? rKey : cKey] = number(t.value);
         break;
       }
       case 'coefficient': {

@@ -265,17 +265,18 @@ fn analyse_prints_the_library_figures_and_writes_the_maps() {
             .unwrap()
             > 0.0
     );
+    let form = analysis.form_map();
     let maps = [
         (
             "acc-linearization.csv",
             "error_um",
-            analysis.linearization_map().clone(),
+            analysis.linearization_map(),
         ),
-        ("acc-form.csv", "error_um", analysis.form_map()),
+        ("acc-form.csv", "error_um", &*form),
         (
             "acc-clearance.csv",
             "required_clearance_deg",
-            analysis.clearance_map().clone(),
+            analysis.clearance_map(),
         ),
     ];
     for (file, value, map) in maps {

@@ -83,13 +83,18 @@ export async function waitForState(page, states, timeout = 120_000) {
   }
 }
 
-/** Types `text` into the job field at `path`, waits for the re-plan it starts, then for one
- * of the `settle` states. */
-export async function setField(page, path, text, settle = ['done']) {
+/** Runs `action` (an edit), waits for the re-plan it starts, then for one of the `settle`
+ * states. */
+export async function replan(page, action, settle = ['done']) {
   const started = await page.evaluate(() => window.spiralcam.started);
-  await page.fill(`[data-field="${path}"]`, text);
+  await action();
   await page.waitForFunction((n) => window.spiralcam.started > n, started, { timeout: 10_000 });
   await waitForState(page, settle);
+}
+
+/** Types `text` into the job field at `path` and waits as [`replan`] does. */
+export async function setField(page, path, text, settle = ['done']) {
+  await replan(page, () => page.fill(`[data-field="${path}"]`, text), settle);
 }
 
 /** The canvas as RGBA pixels: { width, height, data }. */

@@ -10,7 +10,8 @@ import { mkdtempSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import {
-  ROOT, canvasPixels, download, launch, openPage, pixelStats, planWithCli, setField, startServer, waitForState,
+  ROOT, canvasPixels, download, launch, openPage, pixelStats, planWithCli, replan, setField, startServer,
+  waitForState,
 } from './harness.mjs';
 
 let server;
@@ -89,10 +90,7 @@ for (const backend of ['WebGPU', 'WebGL2']) {
     test('an edit re-plans and changes the report', async () => {
       await setField(page, 'strategy.feed_mm_per_rev', '0.02');
       assert.equal(await page.textContent('[data-key="Points"]'), '180,001');
-      const started = await page.evaluate(() => window.spiralcam.started);
-      await page.selectOption('[data-field="output.dialect"]', 'moore');
-      await page.waitForFunction((n) => window.spiralcam.started > n, started);
-      await waitForState(page, ['done']);
+      await replan(page, () => page.selectOption('[data-field="output.dialect"]', 'moore'));
       const report = await page.evaluate(() => window.spiralcam.report);
       assert.equal(report.dialect, 'Moore Nanotech style');
       // The edited job, saved from the page and planned by the command line, gives the same NC.

@@ -15,11 +15,10 @@
 mod common;
 mod nurbs_nets;
 
-use common::{check_derivatives, check_planned_path, config, local};
+use common::{check_derivatives, check_planned_path, config, example_job, local};
 use nurbs_nets::{Poly, add, clamped, mul, polynomial_net, scale, sphere, sphere_cap, uniform};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
-use spiralcam::job::Job;
 use spiralcam::plan::Planner;
 use spiralcam::surface::{Nurbs, NurbsSpec, PartDisc, Surface, SurfaceSpec};
 
@@ -361,17 +360,9 @@ fn bad_json_names_the_field() {
 // ---------------------------------------------------------------------------------------------
 // Jobs
 
-fn example_job() -> Job {
-    let path = format!(
-        "{}/../crate/jobs/nurbs-freeform.json",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    Job::from_json(&std::fs::read_to_string(path).expect("example job")).expect("job JSON")
-}
-
 #[test]
 fn the_example_job_builds_and_is_smooth() {
-    let job = example_job();
+    let job = example_job("nurbs-freeform.json");
     let planner = Planner::new(&job).unwrap_or_else(|e| panic!("{e}"));
     let s = planner.surface();
     assert!(

@@ -12,10 +12,9 @@
 mod common;
 mod nurbs_nets;
 
-use common::{check_planned_path, local};
+use common::{check_planned_path, example_job, local};
 use nurbs_nets::{clamped, polynomial_net, sphere, sphere_cap};
 use spiralcam::data_file::DataFile;
-use spiralcam::job::Job;
 use spiralcam::plan::Planner;
 use spiralcam::surface::step_face::{FaceChoice, StepUnits};
 use spiralcam::surface::{
@@ -474,11 +473,7 @@ fn spec_error(json: &str) -> String {
 
 #[test]
 fn the_example_job_reads_its_file_and_cuts_the_sphere() {
-    let dir = format!("{}/../crate/jobs", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(format!("{dir}/step-face-sphere.json")).unwrap();
-    let mut job = Job::from_json(&text).unwrap();
-    job.load_files(|f| std::fs::read_to_string(format!("{dir}/{f}")).map_err(|e| e.to_string()))
-        .unwrap();
+    let job = example_job("step-face-sphere.json");
     let planner = Planner::new(&job).unwrap_or_else(|e| panic!("{e}"));
     let s = planner.surface();
     for (x, y) in points() {

@@ -8,7 +8,7 @@
 //!   (fourth, for the Hessian from the analytic gradient) derivatives below 10⁴ mm⁻² (mm⁻³), both
 //!   stay below 2e-7 + 1e-7·|value|, the tolerance used (a wrong factor or index in any term is
 //!   orders of magnitude larger).
-//! - [`dense_gap`] and [`check_planned_path`]: the brute-force gouge check of one-way nose
+//! - [`dense_gap`], [`NoseArc`] and [`check_planned_path`]: the brute-force gouge check of one-way nose
 //!   compensation (paper 003 eqs 17–24). The nose arc of centre (ρ_s, z_c) and radius r is
 //!   sampled at `samples + 1` equal steps Δa of the nose angle, plus the arc's ends and given
 //!   offsets (the contact, slope kinks). Between samples the gap
@@ -191,6 +191,58 @@ pub fn check_gap(at: &str, gap: &Gap) -> Result<(), TestCaseError> {
     Ok(())
 }
 
+/// The nose arc of a job: its radius, half its included angle, and the part radius that cuts it.
+#[derive(Debug, Clone, Copy)]
+pub struct NoseArc {
+    /// Nose radius r, mm.
+    pub r: f64,
+    /// Half the included angle β/2, rad.
+    pub half_angle: f64,
+    /// The part radius, mm.
+    pub limit: f64,
+}
+
+impl NoseArc {
+    /// The nose arc of `job`.
+    pub fn of(job: &Job) -> Self {
+        Self {
+            r: job.tool.nose_radius_mm,
+            half_angle: (job.tool.included_angle_deg / 2.0).to_radians(),
+            limit: job.part_radius_mm(),
+        }
+    }
+
+    /// The arc's radial span [ρ_s + r·sin a_lo, ρ_s + r·sin a_hi] over [`arc_range`] at ρ_s.
+    pub fn span(&self, rho_s: f64) -> (f64, f64) {
+        let (lo, hi) = arc_range(self.r, self.half_angle, rho_s, self.limit);
+        (rho_s + self.r * lo.sin(), rho_s + self.r * hi.sin())
+    }
+
+    /// [`dense_gap`] of the nose at path point `p` on `surface`: `samples` steps plus the
+    /// contact and the offsets `extra` from ρ_s.
+    pub fn gap(&self, surface: &dyn Surface, p: &PathPoint, extra: &[f64], samples: usize) -> Gap {
+        let (s, c) = p.theta.sin_cos();
+        let mut extra = extra.to_vec();
+        extra.push(p.contact[0] * c + p.contact[1] * s - p.rho);
+        dense_gap(
+            surface,
+            self.r,
+            self.half_angle,
+            self.limit,
+            p.rho,
+            p.theta,
+            p.z + self.r,
+            &extra,
+            samples,
+        )
+    }
+}
+
+/// Names path point `p` of `what` in a gouge-check message.
+pub fn point_name(what: &str, p: &PathPoint) -> String {
+    format!("{what}: point {} (ρ {}, θ {})", p.index, p.rho, p.theta)
+}
+
 /// Plans `job_json` and checks every point of its path with [`dense_gap`] (`samples` steps,
 /// the arc cut at the part radius): the nose touches the surface within 0.1 nm, cuts nowhere
 /// deeper than 0.1 nm, and the sampling bound stays under 0.02 nm. `kinks(cos θ, sin θ)` lists
@@ -203,33 +255,14 @@ pub fn check_planned_path(
 ) -> u64 {
     let job = Job::from_json(job_json).expect("job JSON");
     let planner = Planner::new(&job).unwrap_or_else(|e| panic!("{}: {e}", job.name));
-    let r = job.tool.nose_radius_mm;
-    let half = (job.tool.included_angle_deg / 2.0).to_radians();
-    let limit = job.part_radius_mm();
-    let surface = planner.surface();
+    let arc = NoseArc::of(&job);
     let mut n = 0;
     for p in planner.points() {
         let p = p.unwrap_or_else(|e| panic!("{}: {e}", job.name));
         let (s, c) = p.theta.sin_cos();
-        let u_c = p.contact[0] * c + p.contact[1] * s - p.rho;
-        let mut extra: Vec<f64> = kinks(c, s).iter().map(|k| k - p.rho).collect();
-        extra.push(u_c);
-        let gap = dense_gap(
-            surface,
-            r,
-            half,
-            limit,
-            p.rho,
-            p.theta,
-            p.z + r,
-            &extra,
-            samples,
-        );
-        let at = format!(
-            "{}: point {} (ρ {}, θ {})",
-            job.name, p.index, p.rho, p.theta
-        );
-        check_gap(&at, &gap).unwrap_or_else(|e| panic!("{e}"));
+        let extra: Vec<f64> = kinks(c, s).iter().map(|k| k - p.rho).collect();
+        let gap = arc.gap(planner.surface(), &p, &extra, samples);
+        check_gap(&point_name(&job.name, &p), &gap).unwrap_or_else(|e| panic!("{e}"));
         n += 1;
     }
     assert_eq!(n, planner.spiral().point_count_hint());
@@ -382,14 +415,24 @@ pub fn check_field_errors(cases: &[(&str, &str, &str)]) {
     }
 }
 
-/// The example jobs of the documentation, `crate/jobs/<file>`, parse, validate and describe
-/// themselves: each planner's surface description contains its `family` text, and its spiral has
-/// fewer than a million points.
+/// The example job `crate/jobs/<file>` of the documentation, with the data files it names
+/// (relative to that folder) read in, as the command line reads them.
+pub fn example_job(file: &str) -> Job {
+    let dir = format!("{}/../crate/jobs", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(format!("{dir}/{file}"))
+        .unwrap_or_else(|e| panic!("{dir}/{file}: {e}"));
+    let mut job = Job::from_json(&text).unwrap_or_else(|e| panic!("{file}: {e}"));
+    job.load_files(|p| std::fs::read_to_string(format!("{dir}/{p}")).map_err(|e| e.to_string()))
+        .unwrap_or_else(|e| panic!("{file}: {e}"));
+    job
+}
+
+/// The example jobs of the documentation, `crate/jobs/<file>` ([`example_job`]), parse, validate
+/// and describe themselves: each planner's surface description contains its `family` text, and
+/// its spiral has fewer than a million points.
 pub fn check_example_jobs(jobs: &[(&str, &str)]) {
     for &(file, family) in jobs {
-        let path = format!("{}/../crate/jobs/{file}", env!("CARGO_MANIFEST_DIR"));
-        let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-        let job = Job::from_json(&text).unwrap_or_else(|e| panic!("{file}: {e}"));
+        let job = example_job(file);
         let planner = Planner::new(&job).unwrap_or_else(|e| panic!("{file}: {e}"));
         assert!(planner.surface().describe().contains(family), "{file}");
         let points = planner.spiral().point_count_hint();

@@ -241,7 +241,10 @@ const FAMILY_DEFAULTS = {
 /** The fixed sections: [section title, [field descriptions]]. */
 const SECTIONS = [
   ['Job', [{ path: 'name', label: 'Name', text: true, hint: 'letters, digits, - _ .' }]],
-  ['Part', [{ path: 'part.diameter_mm', label: 'Diameter', unit: 'mm', hint: '> 0' }]],
+  ['Part', [
+    { path: 'part.diameter_mm', label: 'Diameter', unit: 'mm', hint: '> 0' },
+    { path: 'part.normal_axis_at_mm', label: 'Spindle axis: normal at x, y', unit: 'mm', hint: 'blank: the design\'s Z; "x, y": the part turned about the design\'s normal there (paper 001)', optional: true, list: true },
+  ]],
   ['Tool', [
     { path: 'tool.nose_radius_mm', label: 'Nose radius r', unit: 'mm', hint: '≥ 0' },
     { path: 'tool.included_angle_deg', label: 'Included angle', unit: '°', hint: '(0, 180]' },
@@ -382,9 +385,9 @@ export class JobForm {
       control.value = value === undefined ? '' : String(value);
     } else {
       control = el('input', { type: 'text', inputMode: f.text ? 'text' : 'decimal', spellcheck: false });
-      control.value = value === undefined || value === null ? '' : String(value);
+      control.value = value === undefined || value === null ? '' : Array.isArray(value) ? value.join(', ') : String(value);
     }
-    control.dataset.kind = f.options ? (f.boolean ? 'bool' : f.numeric ? 'sign' : 'choice') : f.text ? 'text' : 'number';
+    control.dataset.kind = f.options ? (f.boolean ? 'bool' : f.numeric ? 'sign' : 'choice') : f.text ? 'text' : f.list ? 'list' : 'number';
     if (f.optional) control.dataset.optional = '1';
     const r = row(f.path, f.label, control, f.unit, f.hint);
     if (f.when) r.dataset.when = f.when;
@@ -633,7 +636,7 @@ export class JobForm {
       }
       case 'list': {
         const items = t.value.split(/[\s,;]+/).filter((v) => v !== '');
-        set(this.job, path, items.map(Number));
+        set(this.job, path, t.dataset.optional && !items.length ? undefined : items.map(Number));
         break;
       }
       case 'term': {
@@ -671,7 +674,7 @@ export class JobForm {
     if (!path) return false;
     const candidates = [...this.root.querySelectorAll('[data-field]')];
     const control = candidates.find((c) => c.dataset.field === path)
-      || candidates.find((c) => path.startsWith(`${c.dataset.field}.`) || c.dataset.field.startsWith(`${path}.`) || c.dataset.field.startsWith(`${path}[`));
+      || candidates.find((c) => path.startsWith(`${c.dataset.field}.`) || path.startsWith(`${c.dataset.field}[`) || c.dataset.field.startsWith(`${path}.`) || c.dataset.field.startsWith(`${path}[`));
     if (!control) return false;
     control.classList.add('invalid');
     const slot = control.closest('.row')?.querySelector('.error');

@@ -5,10 +5,10 @@
 //! [`Job::validate`] checks every value against its range; both give errors that name the field.
 
 use crate::compensate::{Compensation, ToolSpec};
-use crate::field::{FieldError, positive};
+use crate::field::{FieldError, finite, positive};
 use crate::nc::OutputSpec;
 use crate::spiral::{Direction, Sampling};
-use crate::surface::SurfaceSpec;
+use crate::surface::{PartDisc, Reframed, Surface, SurfaceSpec};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
@@ -40,8 +40,13 @@ pub struct Job {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PartSpec {
-    /// Diameter of the part, mm, > 0.
+    /// Diameter of the part, mm, > 0, about the spindle axis.
     pub diameter_mm: f64,
+    /// The spindle axis: absent, the design's Z through its origin; `[x, y]` (mm, design
+    /// coordinates), the design's normal at that point (paper 001's rotation axis `t`), the part
+    /// being mounted with that point on the axis ([`crate::surface::Reframed`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal_axis_at_mm: Option<[f64; 2]>,
 }
 
 /// The machine.
@@ -139,6 +144,33 @@ impl Job {
         self.part.diameter_mm / 2.0
     }
 
+    /// The surface as the spindle sees it: the design, or with `part.normal_axis_at_mm` the
+    /// design seen along its normal there. The design's features (lenslets kept, checks against
+    /// the part) are laid out over the part disc about that point.
+    pub fn build_surface(&self) -> Result<Box<dyn Surface>, FieldError> {
+        let radius_mm = self.part_radius_mm();
+        let Some([x_mm, y_mm]) = self.part.normal_axis_at_mm else {
+            return self.surface.build(radius_mm);
+        };
+        let disc = PartDisc {
+            radius_mm,
+            x_mm,
+            y_mm,
+        };
+        let design = self
+            .surface
+            .build_in(disc)
+            .map_err(|e| e.within("surface"))?;
+        match Reframed::new(design, x_mm, y_mm) {
+            Ok(s) => Ok(Box::new(s)),
+            Err(e) => Err(FieldError::new(
+                "part.normal_axis_at_mm",
+                format!("[{x_mm}, {y_mm}]"),
+                format!("must be a point where the surface is defined: {e}"),
+            )),
+        }
+    }
+
     /// Radius where the spiral starts, mm (before rounding to whole steps).
     pub fn outer_radius_mm(&self) -> f64 {
         self.strategy
@@ -180,6 +212,10 @@ impl Job {
             .into());
         }
         positive("part.diameter_mm", self.part.diameter_mm)?;
+        if let Some([x, y]) = self.part.normal_axis_at_mm {
+            finite("part.normal_axis_at_mm[0]", x)?;
+            finite("part.normal_axis_at_mm[1]", y)?;
+        }
         positive("machine.spindle_rpm", self.machine.spindle_rpm)?;
         if let Some(r) = self.strategy.outer_radius_mm {
             positive("strategy.outer_radius_mm", r)?;

@@ -300,7 +300,7 @@ fn sag(args: &[String]) -> Result<(), Failure> {
         .ok_or_else(|| Failure::Usage("sag needs --at POINTS.csv".into()))?;
     let job = read_job(&args.job)?;
     job.validate().map_err(run_err)?;
-    let surface = job.surface.build(job.part_radius_mm()).map_err(run_err)?;
+    let surface = job.build_surface().map_err(run_err)?;
     let text =
         std::fs::read_to_string(at).map_err(|e| Failure::Run(format!("{}: {e}", at.display())))?;
     let mut out = BufWriter::new(std::io::stdout().lock());

@@ -164,7 +164,7 @@ impl Planner {
     /// Validates the job and builds its stages.
     pub fn new(job: &Job) -> Result<Self, PlanError> {
         job.validate()?;
-        let surface = job.surface.build(job.part_radius_mm())?;
+        let surface = job.build_surface()?;
         // The material ends at the part edge, wherever the spiral starts.
         let nose =
             NoseCompensator::new(&job.tool, surface.feature_length_mm(), job.part_radius_mm())

@@ -113,6 +113,17 @@ for (const backend of ['WebGPU', 'WebGL2']) {
       assert.equal(await page.textContent('[data-error-for="tool.nose_radius_mm"]'), '');
     });
 
+    test('the spindle axis can be the normal at a point', async () => {
+      await setField(page, 'part.normal_axis_at_mm', '0.3, 0.2');
+      const report = await page.evaluate(() => window.spiralcam.report);
+      assert.match(report.surface, /on a spindle axis along its normal at \(0\.3, 0\.2\) mm .*tilted 7\./);
+      await setField(page, 'part.normal_axis_at_mm', 'x, 0', ['error']);
+      assert.equal(await page.textContent('[data-error-for="part.normal_axis_at_mm"]'),
+        'part.normal_axis_at_mm[0] = NaN: must be a finite number');
+      await setField(page, 'part.normal_axis_at_mm', '');
+      assert.equal((await page.evaluate(() => window.spiralcam.report)).surface.includes('tilted'), false);
+    });
+
     test('a multi-million-point job keeps the page responsive and can be cancelled', async () => {
       await setField(page, 'strategy.feed_mm_per_rev', '0.001', ['planning']);
       await setField(page, 'strategy.sampling.points_per_rev', '2000', ['planning']);

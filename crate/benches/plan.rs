@@ -1,9 +1,12 @@
 //! Planning throughput: spiral sampling, one-way compensation and ISO NC writing (into a byte
-//! sink) for 1 M points on the paper 004 lens array and on an asphere. Criterion prints the
-//! figures as elements (points) per second.
+//! sink) for 1 M points on the paper 004 lens array and on an asphere; and the axis checks
+//! (`axis_checks::check_axes`) of the 1 M point lens-array path against the `fts_70um_700hz`
+//! example machine. Criterion prints the figures as elements (points) per second.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use spiralcam::axis_checks::{check_axes, slide_only_samples};
 use spiralcam::job::Job;
+use spiralcam::machine::presets;
 use spiralcam::plan::{Planner, Sinks};
 use std::hint::black_box;
 use std::ops::ControlFlow;
@@ -54,5 +57,19 @@ fn plan_and_write(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, plan_and_write);
+fn axis_checks(c: &mut Criterion) {
+    let job = million(include_str!("../jobs/lens-array-paper004.json"), 500.0);
+    let planner = Planner::new(&job).expect("valid job");
+    let samples = slide_only_samples(&planner).expect("plan");
+    let machine = presets()[2].machine(job.machine.spindle_rpm);
+    let mut group = c.benchmark_group("check_axes_1M");
+    group.sample_size(10);
+    group.throughput(Throughput::Elements(samples.len() as u64));
+    group.bench_function("lens_array_paper004", |b| {
+        b.iter(|| black_box(check_axes(black_box(&samples), &machine)))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, plan_and_write, axis_checks);
 criterion_main!(benches);

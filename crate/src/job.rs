@@ -6,6 +6,7 @@
 
 use crate::compensate::{Compensation, ToolSpec};
 use crate::field::{FieldError, finite, positive};
+pub use crate::machine::MachineSpec;
 use crate::nc::OutputSpec;
 use crate::spiral::{Direction, Sampling};
 use crate::surface::{PartDisc, Reframed, Surface, SurfaceSpec};
@@ -47,15 +48,6 @@ pub struct PartSpec {
     /// being mounted with that point on the axis ([`crate::surface::Reframed`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub normal_axis_at_mm: Option<[f64; 2]>,
-}
-
-/// The machine.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct MachineSpec {
-    /// Spindle speed, rev/min, > 0: sets the time per block (inverse-time feed) and the cycle
-    /// time.
-    pub spindle_rpm: f64,
 }
 
 /// How the spiral is laid.
@@ -216,7 +208,7 @@ impl Job {
             finite("part.normal_axis_at_mm[0]", x)?;
             finite("part.normal_axis_at_mm[1]", y)?;
         }
-        positive("machine.spindle_rpm", self.machine.spindle_rpm)?;
+        self.machine.validate().map_err(|e| e.within("machine"))?;
         if let Some(r) = self.strategy.outer_radius_mm {
             positive("strategy.outer_radius_mm", r)?;
             if r > self.part_radius_mm() {

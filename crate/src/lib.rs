@@ -9,6 +9,7 @@
 //! [`plan`] runs the whole chain as a stream, so memory does not grow with the point count.
 
 pub mod analysis;
+pub mod axis_checks;
 pub mod compensate;
 pub mod data_file;
 pub mod display;
@@ -16,6 +17,7 @@ pub mod field;
 pub mod hcaa;
 pub mod job;
 pub mod linearization;
+pub mod machine;
 pub mod nc;
 pub mod plan;
 pub mod power_map;

@@ -273,3 +273,68 @@ fn a_lens_array_program_with_mirrored_x_and_z_reads_back() {
                       "feed_mode":"per_minute","feed_mm_per_min":30}}"#,
     );
 }
+
+/// A program split between the slide and a fast tool servo (`NcWriter::point_split`, the servo
+/// on an arbitrary 5-per-revolution share of up to 20 µm) reads back with the servo's word:
+/// standalone rs274 knows only the axes X Y Z A B C, so the servo takes `A` here (`W`, the
+/// default, is refused by it as an unknown axis). Every feed's Z is the slide's share and its
+/// A the servo's, each within the printed 4 decimals, and the parsed words (DEBUG #5422, #5423)
+/// add up to the single-channel Z within half a written unit.
+#[test]
+fn a_split_program_reads_back_with_the_servo_word() {
+    use spiralcam::nc::NcWriter;
+    let json = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../crate/jobs/tilted-flat.json"
+    ))
+    .unwrap();
+    let mut job = Job::from_json(&json).unwrap();
+    job.name = "split".into();
+    job.output = spiralcam::nc::OutputSpec {
+        fts_word: Some("A".into()),
+        ..Default::default()
+    };
+    let planner = Planner::new(&job).expect("valid job");
+    let pts: Vec<PathPoint> = planner.points().map(|p| p.unwrap()).collect();
+    let slide = |p: &PathPoint| p.z - 0.02 * (0.5 + 0.5 * (5.0 * p.theta).sin());
+    let mut nc = Vec::new();
+    let mut writer = NcWriter::new(&mut nc, &job.output, &planner.header()).unwrap();
+    for p in &pts {
+        writer.point_split(p, slide(p)).unwrap();
+    }
+    writer.finish().unwrap();
+    let text = String::from_utf8(nc).unwrap();
+    let mut debug = String::new();
+    for l in text.lines() {
+        debug.push_str(l);
+        debug.push('\n');
+        if l.starts_with("G1") {
+            debug.push_str("#1=[#5422+1000]\n#2=[#5423+1000]\n(DEBUG,#1 #2)\n");
+        }
+    }
+    let dir = scratch(&job.name);
+    let path = dir.join("split-debug.ngc");
+    std::fs::write(&path, &debug).unwrap();
+    let out = interpret(&path);
+    let conv = job.output.conventions();
+    let half = half_unit(conv.decimals_xz);
+    let feeds = calls(&out, "STRAIGHT_FEED");
+    assert_eq!(feeds.len(), pts.len());
+    for (f, p) in feeds.iter().zip(&pts) {
+        let (z, w) = (conv.z_sign * slide(p), conv.z_sign * (p.z - slide(p)));
+        assert!((f[2] - z).abs() <= PRINTED + 2.0 * half, "{f:?} vs Z {z}");
+        assert!((f[3] - w).abs() <= PRINTED + 2.0 * half, "{f:?} vs A {w}");
+    }
+    let msgs = messages(&out);
+    assert_eq!(msgs.len(), pts.len());
+    for (m, p) in msgs.iter().zip(&pts) {
+        let sum = (m[0] - 1000.0) + (m[1] - 1000.0);
+        // Z and the whole are each rounded once (half a unit), the offsets add 1e-10.
+        assert!(
+            (sum - conv.z_sign * p.z).abs() <= half + 1e-10,
+            "parsed Z + A {sum}, planned {}",
+            p.z
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -5,7 +5,11 @@
 //! one linear block per path point after the first; the retract (`Z + clearance`) and the end.
 //! Machine words come from the path through the sign options: `X = x_sign·ρ`,
 //! `Z = z_sign·z_tip` (the tool tip, nose centre − r), `C = c_sign·θ` in degrees, wrapped to
-//! [0, 360) or cumulative. With inverse-time feed (G93) each block's F is
+//! [0, 360) or cumulative. A path split between the slide and a fast tool servo
+//! ([`NcWriter::point_split`]) adds the FTS word (`W` unless `output.fts_word` names another)
+//! after the others: `Z` is the slide's share, `W` the servo's, rounded so that the written
+//! `Z + W` equals, digit for digit, the `Z` a single-channel program would write. With
+//! inverse-time feed (G93) each block's F is
 //! `1 / (block time in minutes) = rpm·360° / |ΔC|`, so the spindle turns at the job's speed.
 //!
 //! The dialects ([`Dialect`]) are styles, not vendor specifications: ISO RS-274 as read by
@@ -14,12 +18,14 @@
 //! dates, no host names. Comments are plain ASCII.
 
 mod csv;
+mod fts_table;
 mod iso;
 mod moore;
 pub mod number;
 mod precitech;
 
 pub use csv::CsvWriter;
+pub use fts_table::FtsTableWriter;
 
 use crate::field::{FieldError, non_negative, positive};
 use crate::plan::PathPoint;
@@ -27,6 +33,10 @@ use number::{push_fixed, push_scaled, scaled};
 use serde::{Deserialize, Serialize};
 use std::io::Write;
 use thiserror::Error;
+
+/// The words a fast tool servo's channel may take: axis letters no dialect uses for anything
+/// else (LinuxCNC reads A, B, U, V, W and Y as axes).
+pub const FTS_WORDS: [&str; 6] = ["W", "U", "V", "A", "B", "Y"];
 
 /// The NC dialect.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -85,6 +95,10 @@ pub struct OutputSpec {
     pub plunge_feed_mm_per_min: f64,
     /// Height of the approach and retract above the first and last point, mm, ≥ 0; default 1.
     pub clearance_mm: f64,
+    /// The word of the fast tool servo's channel in split programs: one of `A B U V W Y`;
+    /// default `W`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fts_word: Option<String>,
 }
 
 impl Default for OutputSpec {
@@ -101,6 +115,7 @@ impl Default for OutputSpec {
             feed_mm_per_min: None,
             plunge_feed_mm_per_min: 50.0,
             clearance_mm: 1.0,
+            fts_word: None,
         }
     }
 }
@@ -144,6 +159,12 @@ impl OutputSpec {
         }
         positive("plunge_feed_mm_per_min", self.plunge_feed_mm_per_min)?;
         non_negative("clearance_mm", self.clearance_mm)?;
+        if let Some(word) = &self.fts_word
+            && !FTS_WORDS.iter().any(|w| w == word)
+        {
+            let allowed = format!("must be one of {}", FTS_WORDS.join(", "));
+            return Err(FieldError::new("fts_word", format!("{word:?}"), allowed));
+        }
         Ok(())
     }
 
@@ -166,6 +187,11 @@ impl OutputSpec {
             wrap_c: self.wrap_c.unwrap_or(st.wrap_c),
             decimals_xz: self.decimals_xz,
             decimals_c: self.decimals_c,
+            fts_word: self
+                .fts_word
+                .as_deref()
+                .and_then(|w| w.bytes().next())
+                .unwrap_or(b'W'),
         }
     }
 }
@@ -219,6 +245,8 @@ pub struct Conventions {
     pub decimals_xz: u32,
     /// Decimals of C.
     pub decimals_c: u32,
+    /// Letter of the fast tool servo's word.
+    pub fts_word: u8,
 }
 
 /// Machine words of one point, in units of their last digit.
@@ -228,8 +256,10 @@ pub struct Words {
     pub c: i64,
     /// X, units of 10^−decimals_xz mm.
     pub x: i64,
-    /// Z, units of 10^−decimals_xz mm.
+    /// Z, units of 10^−decimals_xz mm (the slide's share in a split program).
     pub z: i64,
+    /// W, the fast tool servo's share, units of 10^−decimals_xz mm; `None` without a servo.
+    pub w: Option<i64>,
 }
 
 impl Conventions {
@@ -243,7 +273,27 @@ impl Conventions {
         if self.wrap_c {
             c = c.rem_euclid(360 * 10i64.pow(self.decimals_c));
         }
-        Ok(Words { c, x, z })
+        Ok(Words { c, x, z, w: None })
+    }
+
+    /// The words of a point whose height `z` is split: the slide at `z_slide`, the servo the
+    /// rest. Z and the sum are rounded, W is their difference, so `Z + W` is exactly the
+    /// single-channel Z word.
+    pub fn split_words(
+        &self,
+        index: u64,
+        rho: f64,
+        theta: f64,
+        z: f64,
+        z_slide: f64,
+    ) -> Result<Words, NcError> {
+        let whole = self.words(index, rho, theta, z)?;
+        let slide = self.z_units(index, z_slide)?;
+        Ok(Words {
+            z: slide,
+            w: Some(whole.z - slide),
+            ..whole
+        })
     }
 
     /// The Z word of height `z` alone (approach and retract), in units of its last digit.
@@ -348,6 +398,19 @@ impl<W: Write> NcWriter<W> {
     /// Writes the block that reaches `p` (the approach for the first point).
     pub fn point(&mut self, p: &PathPoint) -> Result<(), NcError> {
         let w = self.conv.words(p.index, p.rho, p.theta, p.z)?;
+        self.block(p, w)
+    }
+
+    /// Writes the block that reaches `p` with its height split: Z the slide at `z_slide`, and
+    /// the fast tool servo's word the rest (see [`Conventions::split_words`]).
+    pub fn point_split(&mut self, p: &PathPoint, z_slide: f64) -> Result<(), NcError> {
+        let w = self
+            .conv
+            .split_words(p.index, p.rho, p.theta, p.z, z_slide)?;
+        self.block(p, w)
+    }
+
+    fn block(&mut self, p: &PathPoint, w: Words) -> Result<(), NcError> {
         self.line.clear();
         match self.last {
             None => self.approach(w, p)?,
@@ -388,6 +451,7 @@ impl<W: Write> NcWriter<W> {
         self.push_xc(w);
         self.line.extend_from_slice(b"\nG1 Z");
         push_scaled(&mut self.line, w.z, d);
+        self.push_fts_word(w);
         self.line.extend_from_slice(b" F");
         push_fixed(&mut self.line, self.plunge_feed, DECIMALS_F);
         self.line.push(b'\n');
@@ -422,6 +486,15 @@ impl<W: Write> NcWriter<W> {
                 self.line.push(b' ');
             }
             self.push_word(axis, w);
+        }
+        self.push_fts_word(w);
+    }
+
+    fn push_fts_word(&mut self, w: Words) {
+        if let Some(units) = w.w {
+            self.line.push(b' ');
+            self.line.push(self.conv.fts_word);
+            push_scaled(&mut self.line, units, self.conv.decimals_xz);
         }
     }
 
@@ -488,6 +561,71 @@ mod tests {
     use super::*;
 
     #[test]
+    fn split_words_add_up_to_the_single_channel_z_exactly() {
+        let conv = OutputSpec::default().conventions();
+        // Heights whose slide share rounds the other way from the whole (…5 at the 7th digit).
+        for (z, slide) in [
+            (0.1234565, 0.0000005),
+            (-1.2345675, -1.2),
+            (3.0, 2.9999995),
+            (1e-7, -4e-7),
+        ] {
+            let whole = conv.words(0, 1.0, 0.0, z).unwrap();
+            let split = conv.split_words(0, 1.0, 0.0, z, slide).unwrap();
+            assert_eq!(split.z + split.w.unwrap(), whole.z, "{z} {slide}");
+            assert_eq!(split.z, scaled(slide, 6).unwrap());
+            assert_eq!((split.x, split.c), (whole.x, whole.c));
+        }
+    }
+
+    #[test]
+    fn the_fts_word_is_an_unused_axis_letter() {
+        let spec = |w: &str| OutputSpec {
+            fts_word: Some(w.into()),
+            ..Default::default()
+        };
+        assert_eq!(spec("U").conventions().fts_word, b'U');
+        assert_eq!(OutputSpec::default().conventions().fts_word, b'W');
+        for bad in ["Z", "w", "WW", ""] {
+            let e = spec(bad).validate().unwrap_err().to_string();
+            assert_eq!(
+                e,
+                format!("fts_word = {bad:?}: must be one of W, U, V, A, B, Y")
+            );
+        }
+    }
+
+    #[test]
+    fn the_fts_table_has_the_programs_c_x_and_w() {
+        let spec = OutputSpec::default();
+        let p = PathPoint {
+            rho: 1.5,
+            theta: 0.25,
+            z: -0.0123456,
+            ..Default::default()
+        };
+        let mut table = Vec::new();
+        let mut t = FtsTableWriter::new(&mut table, spec.conventions()).unwrap();
+        t.point(&p, -0.01).unwrap();
+        t.finish().unwrap();
+        assert_eq!(
+            String::from_utf8(table).unwrap(),
+            "c_deg,x_mm,w_mm\n14.32394,1.500000,-0.002346\n"
+        );
+        let header = Header {
+            lines: vec![],
+            spindle_rpm: 100.0,
+        };
+        let mut nc = Vec::new();
+        let mut w = NcWriter::new(&mut nc, &spec, &header).unwrap();
+        w.point_split(&p, -0.01).unwrap();
+        w.finish().unwrap();
+        let text = String::from_utf8(nc).unwrap();
+        assert!(text.contains("G1 Z-0.010000 W-0.002346 F"), "{text}");
+        assert!(text.contains("G0 X1.500000 C14.32394"), "{text}");
+    }
+
+    #[test]
     fn comments_become_plain_ascii() {
         assert_eq!(
             ascii_comment("R 2.84 mm (−44.4 µm), 60°"),
@@ -504,6 +642,7 @@ mod tests {
             wrap_c: true,
             decimals_xz: 6,
             decimals_c: 5,
+            fts_word: b'W',
         };
         // 359.999996° rounds to 360.00000 and must wrap to 0.
         let w = conv

@@ -1,0 +1,549 @@
+//! The compensated path as a signal of the spindle angle, the common input of the frequency
+//! analysis ([`crate::spectrum`], paper 000 "Hybrid Hilbert transform/fast Fourier transform
+//! methodology") and of the splitter ([`crate::split`]).
+//!
+//! **Time.** The spindle turns at constant speed n and the path is sent with inverse-time feed,
+//! so point i is reached at `t_i = φ_i/ω`, `φ_i = |θ_i − θ_0|`, `ω = 2π·n/60`. Everything here
+//! is a function of φ; a speed only rescales it (k cycles per revolution is k·n/60 Hz, a slope
+//! dz/dφ is a velocity ×ω, a curvature d²z/dφ² an acceleration ×ω²).
+//!
+//! **Uniform grid.** The FFT needs equal time steps; constant-arc and HCAA paths have angle
+//! steps that change with the radius. [`PathSignal::uniform`] resamples the path onto
+//! `M` samples per revolution, M the densest sampling of any revolution of the path (at least
+//! 8; at most enough for 4 samples per path point over the whole path), so the grid's Nyquist
+//! frequency M/2 cycles/rev is at least that of every part of the path. Samples are taken by
+//! linear interpolation in φ between path points. That is exactly the motion the controller
+//! executes (C, X and Z linear in time between blocks under inverse-time feed), so the grid adds
+//! no error to the commanded motion; the commanded motion differs from the surface by the
+//! linearization error PVerr ([`crate::linearization`]) that the sampling already bounds. With
+//! constant-angle sampling the grid falls on the path points.
+//!
+//! **Rotationally symmetric part** (paper 002, "surface decomposition": a rotationally
+//! symmetric surface cut by X, C and Z plus a freeform remainder). On a spiral each radius is
+//! visited once per revolution, so the azimuthal mean at the radius of grid sample j is taken as
+//! the triangle-weighted mean over the two revolutions centred on it,
+//! `S_j = Σ_{|k|<M} (M − |k|)·z_{j+k} / M²` (a one-revolution moving mean applied twice). Its
+//! response `(sin πν / (M·sin(πν/M)))²` has a double zero at every whole number ν of cycles
+//! per revolution, so a harmonic `a_m(ρ)·cos(mθ)` whose amplitude changes linearly with the
+//! radius leaves nothing in S, and with `ρ = R − f·φ/2π` the error of S as the azimuthal mean
+//! is second order in the feed f: `|S − S_true| ≤ |S_true″|·f²/12 + Σ_m |a_m″|·f²/(4π²m²)`
+//! (″ = d²/dρ²; a sphere of radius 40 mm at f = 5 µm: 0.05 nm). In the first and last
+//! revolution, where the window does not fit, S is the polynomial through the means at the
+//! three nearest full windows one revolution apart (two or one on a short path), extrapolated
+//! by at most a revolution: exact for a sag quadratic in φ and, like the means themselves,
+//! blind to whole harmonics with amplitudes linear in ρ (with two windows the extrapolation
+//! errs by at most |S″|·f²). A path shorter than two revolutions gets the least-squares line
+//! through all its samples.
+//!
+//! The residual `z − S` passes a tone of ν cycles per revolution with the gain
+//! `1 − T(ν)`, `T(ν) = (sin πν / (M·sin(πν/M)))²` ([`residual_gain`]): 1 at whole ν, at
+//! least 0.95 from ν = 1 on.
+
+use crate::plan::PathPoint;
+use std::f64::consts::TAU;
+use thiserror::Error;
+
+/// The smallest number of grid samples per revolution.
+pub const MIN_SAMPLES_PER_REV: usize = 8;
+
+/// The grid has at most this many samples per path point (and at least 4096 in all).
+pub const MAX_GRID_PER_POINT: usize = 4;
+
+/// The compensated path as three columns, one row per path point.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct PathSignal {
+    /// Spindle angle turned since the first point, `|θ_i − θ_0|`, radians, non-decreasing.
+    pub angle_rad: Vec<f64>,
+    /// Radius (X), mm.
+    pub rho_mm: Vec<f64>,
+    /// Commanded Z (the tool tip), mm.
+    pub z_mm: Vec<f64>,
+}
+
+/// A path that cannot be analysed.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum SignalError {
+    /// Fewer than three points, or no angle turned.
+    ///
+    /// ```
+    /// let s = spiralcam::path_signal::PathSignal::default();
+    /// assert_eq!(s.check().unwrap_err().to_string(),
+    ///            "the path has 0 points over 0 rad: the analysis needs at least 3 points over a positive angle");
+    /// ```
+    #[error(
+        "the path has {points} points over {span_rad} rad: the analysis needs at least 3 points over a positive angle"
+    )]
+    TooShort {
+        /// Points in the path.
+        points: usize,
+        /// Angle turned, radians.
+        span_rad: f64,
+    },
+    /// The columns have different lengths.
+    ///
+    /// ```
+    /// let s = spiralcam::path_signal::PathSignal { angle_rad: vec![0.0, 1.0, 2.0], rho_mm: vec![1.0; 3], z_mm: vec![0.0; 2] };
+    /// assert!(s.check().unwrap_err().to_string().starts_with("the path's columns differ"));
+    /// ```
+    #[error(
+        "the path's columns differ in length: {angles} angles, {radii} radii, {heights} heights"
+    )]
+    Ragged {
+        /// Length of `angle_rad`.
+        angles: usize,
+        /// Length of `rho_mm`.
+        radii: usize,
+        /// Length of `z_mm`.
+        heights: usize,
+    },
+    /// A value is NaN or infinite.
+    ///
+    /// ```
+    /// let s = spiralcam::path_signal::PathSignal { angle_rad: vec![0.0, 1.0, 2.0], rho_mm: vec![1.0; 3], z_mm: vec![0.0, f64::NAN, 0.0] };
+    /// assert_eq!(s.check().unwrap_err().to_string(), "the path has a value that is not finite at point 1");
+    /// ```
+    #[error("the path has a value that is not finite at point {index}")]
+    NotFinite {
+        /// The point.
+        index: usize,
+    },
+    /// The spindle angle goes back (e.g. two-way compensation near the centre moves C against
+    /// the spindle): time would run backwards.
+    ///
+    /// ```
+    /// let s = spiralcam::path_signal::PathSignal { angle_rad: vec![0.0, 1.0, 0.5], rho_mm: vec![1.0; 3], z_mm: vec![0.0; 3] };
+    /// assert!(s.check().unwrap_err().to_string().starts_with("the spindle angle goes back at point 2"));
+    /// ```
+    #[error(
+        "the spindle angle goes back at point {index}: the frequency analysis and the split need the angle to advance along the path"
+    )]
+    NotAdvancing {
+        /// The point.
+        index: usize,
+    },
+}
+
+/// The largest slope and curvature of a channel against the spindle angle, with where they are.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct AngleExtremes {
+    /// Largest |dv/dφ| over the segments, mm/rad (× ω: velocity, mm/s).
+    pub slope_mm_per_rad: f64,
+    /// Point at the start of that segment.
+    pub slope_at: usize,
+    /// Largest |d²v/dφ²| over the interior points, mm/rad² (× ω²: acceleration, mm/s²).
+    pub curvature_mm_per_rad2: f64,
+    /// Point where it is.
+    pub curvature_at: usize,
+}
+
+impl PathSignal {
+    /// The signal of a path: `angle_rad` from θ relative to the first point, whatever the
+    /// direction.
+    pub fn from_points(points: impl IntoIterator<Item = PathPoint>) -> Self {
+        let mut s = Self::default();
+        let mut theta0 = None;
+        for p in points {
+            let t0 = *theta0.get_or_insert(p.theta);
+            s.angle_rad.push((p.theta - t0).abs());
+            s.rho_mm.push(p.rho);
+            s.z_mm.push(p.z);
+        }
+        s
+    }
+
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.z_mm.len()
+    }
+
+    /// Whether there are no points.
+    pub fn is_empty(&self) -> bool {
+        self.z_mm.is_empty()
+    }
+
+    /// Angle turned from the first point to the last, radians.
+    pub fn span_rad(&self) -> f64 {
+        self.angle_rad.last().copied().unwrap_or(0.0)
+    }
+
+    /// Revolutions of the path.
+    pub fn revolutions(&self) -> f64 {
+        self.span_rad() / TAU
+    }
+
+    /// Duration of the path at `spindle_rpm`, seconds.
+    pub fn duration_s(&self, spindle_rpm: f64) -> f64 {
+        self.span_rad() / omega(spindle_rpm)
+    }
+
+    /// Checks that the columns agree, every value is finite, the angle never goes back and the
+    /// path has at least 3 points over a positive angle.
+    pub fn check(&self) -> Result<(), SignalError> {
+        let (a, r, z) = (self.angle_rad.len(), self.rho_mm.len(), self.z_mm.len());
+        if a != r || a != z {
+            return Err(SignalError::Ragged {
+                angles: a,
+                radii: r,
+                heights: z,
+            });
+        }
+        let mut columns = self.angle_rad.iter().zip(&self.rho_mm).zip(&self.z_mm);
+        if let Some(index) =
+            columns.position(|((a, r), z)| !(a.is_finite() && r.is_finite() && z.is_finite()))
+        {
+            return Err(SignalError::NotFinite { index });
+        }
+        if let Some(i) = self.angle_rad.windows(2).position(|w| w[1] < w[0]) {
+            return Err(SignalError::NotAdvancing { index: i + 1 });
+        }
+        let span_rad = self.span_rad() - self.angle_rad.first().copied().unwrap_or(0.0);
+        if self.len() < 3 || span_rad <= 0.0 {
+            return Err(SignalError::TooShort {
+                points: self.len(),
+                span_rad,
+            });
+        }
+        Ok(())
+    }
+
+    /// Samples per revolution of the uniform grid: the densest revolution of the path (its
+    /// mean step), at least [`MIN_SAMPLES_PER_REV`], at most what keeps the grid within
+    /// [`MAX_GRID_PER_POINT`] samples per path point.
+    fn samples_per_rev(&self) -> usize {
+        let mut densest = MIN_SAMPLES_PER_REV as f64;
+        let mut first = 0;
+        while first < self.len() {
+            let rev = (self.angle_rad[first] / TAU).floor();
+            let last =
+                first + self.angle_rad[first..].partition_point(|a| (a / TAU).floor() <= rev) - 1;
+            let span = self.angle_rad[last] - self.angle_rad[first];
+            if last > first && span > 0.0 {
+                densest = densest.max(TAU * (last - first) as f64 / span);
+            }
+            first = last + 1;
+        }
+        let budget = (MAX_GRID_PER_POINT * self.len()).max(4096) as f64;
+        let cap = (budget * TAU / self.span_rad().max(f64::MIN_POSITIVE)).floor();
+        (densest - 1e-6)
+            .ceil()
+            .min(cap)
+            .max(MIN_SAMPLES_PER_REV as f64) as usize
+    }
+
+    /// The path resampled at equal angle steps (see the module docs).
+    pub fn uniform(&self) -> Result<UniformSignal, SignalError> {
+        self.check()?;
+        let m = self.samples_per_rev();
+        let step = TAU / m as f64;
+        let count = ((self.span_rad() / step + 1e-6).floor() as usize + 1).max(2);
+        let (mut z, mut rho) = (Vec::with_capacity(count), Vec::with_capacity(count));
+        let mut k = 0;
+        for j in 0..count {
+            let phi = j as f64 * step;
+            while k + 2 < self.len() && self.angle_rad[k + 1] < phi {
+                k += 1;
+            }
+            let (a0, a1) = (self.angle_rad[k], self.angle_rad[k + 1]);
+            let t = if a1 > a0 {
+                ((phi - a0) / (a1 - a0)).clamp(0.0, 1.0)
+            } else {
+                1.0
+            };
+            z.push(self.z_mm[k] + t * (self.z_mm[k + 1] - self.z_mm[k]));
+            rho.push(self.rho_mm[k] + t * (self.rho_mm[k + 1] - self.rho_mm[k]));
+        }
+        Ok(UniformSignal {
+            samples_per_rev: m,
+            z_mm: z,
+            rho_mm: rho,
+        })
+    }
+
+    /// The largest slope and curvature of `values` (one per point) against the spindle angle,
+    /// by the finite differences of the piecewise-linear motion: the slope of each segment, and
+    /// at each interior point the change of slope over half the two segments
+    /// (`2·(s_{i+½} − s_{i−½})/(φ_{i+1} − φ_{i−1})`, exact for a parabola). Segments of zero
+    /// angle are skipped.
+    pub fn angle_extremes(&self, values: &[f64]) -> AngleExtremes {
+        let n = values.len().min(self.angle_rad.len());
+        let mut e = AngleExtremes::default();
+        let mut prev: Option<(f64, f64)> = None; // (slope, angle step) of the segment before
+        for i in 0..n.saturating_sub(1) {
+            let da = self.angle_rad[i + 1] - self.angle_rad[i];
+            if da <= 0.0 {
+                continue;
+            }
+            let s = (values[i + 1] - values[i]) / da;
+            if s.abs() > e.slope_mm_per_rad {
+                e.slope_mm_per_rad = s.abs();
+                e.slope_at = i;
+            }
+            if let Some((s0, da0)) = prev {
+                let c = 2.0 * (s - s0) / (da + da0);
+                if c.abs() > e.curvature_mm_per_rad2 {
+                    e.curvature_mm_per_rad2 = c.abs();
+                    e.curvature_at = i;
+                }
+            }
+            prev = Some((s, da));
+        }
+        e
+    }
+}
+
+/// The gain of the non-symmetric residual `z − S` for a tone of `cycles_per_rev` on a grid of
+/// `samples_per_rev` (module docs).
+pub fn residual_gain(cycles_per_rev: f64, samples_per_rev: usize) -> f64 {
+    let m = samples_per_rev as f64;
+    let x = std::f64::consts::PI * cycles_per_rev;
+    let den = m * (x / m).sin();
+    if den.abs() < 1e-300 {
+        return 0.0;
+    }
+    1.0 - (x.sin() / den).powi(2)
+}
+
+/// Angular speed of the spindle, rad/s.
+pub fn omega(spindle_rpm: f64) -> f64 {
+    TAU * spindle_rpm / 60.0
+}
+
+/// Hertz of `cycles_per_rev` cycles per revolution at `spindle_rpm`.
+pub fn hz(cycles_per_rev: f64, spindle_rpm: f64) -> f64 {
+    cycles_per_rev * spindle_rpm / 60.0
+}
+
+/// A path resampled at `samples_per_rev` equal angle steps from its first point:
+/// sample j lies at `φ_j = j·2π/samples_per_rev`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UniformSignal {
+    /// Samples per revolution M.
+    pub samples_per_rev: usize,
+    /// Z at the samples, mm.
+    pub z_mm: Vec<f64>,
+    /// Radius at the samples, mm.
+    pub rho_mm: Vec<f64>,
+}
+
+impl UniformSignal {
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.z_mm.len()
+    }
+
+    /// Whether there are no samples.
+    pub fn is_empty(&self) -> bool {
+        self.z_mm.is_empty()
+    }
+
+    /// Angle step, radians.
+    pub fn step_rad(&self) -> f64 {
+        TAU / self.samples_per_rev as f64
+    }
+
+    /// The rotationally symmetric part of `values` (one per sample; see the module docs).
+    pub fn symmetric_part(&self, values: &[f64]) -> Vec<f64> {
+        let (n, m) = (values.len(), self.samples_per_rev);
+        if n < 2 * m - 1 {
+            return least_squares_line(values);
+        }
+        let base = values[0];
+        // One-revolution moving sums (window ending at j), then their moving sums (window
+        // starting at j): the triangle of half-width M around j, by running sums (rounding grows
+        // like √n·ε, not n²·ε as with prefix sums of prefix sums).
+        let mut boxcar = Vec::with_capacity(n + 1 - m);
+        let mut sum: f64 = values[..m].iter().map(|v| v - base).sum();
+        boxcar.push(sum);
+        for j in m..n {
+            sum += values[j] - values[j - m];
+            boxcar.push(sum);
+        }
+        let mut out = vec![0.0; n];
+        let mut sum2: f64 = boxcar[..m].iter().sum();
+        let norm = (m * m) as f64;
+        for (k, j) in (m - 1..=n - m).enumerate() {
+            if k > 0 {
+                sum2 += boxcar[k + m - 1] - boxcar[k - 1];
+            }
+            out[j] = base + sum2 / norm;
+        }
+        // The ends: the polynomial through the means at up to three centres one revolution
+        // apart, nearest first.
+        let (first, last) = (m - 1, n - m);
+        let centres = |from: usize, towards_end: bool| -> Vec<(f64, f64)> {
+            (0..3)
+                .map(|i| {
+                    if towards_end {
+                        from as isize + (i * m) as isize
+                    } else {
+                        from as isize - (i * m) as isize
+                    }
+                })
+                .filter(|&c| c >= first as isize && c <= last as isize)
+                .map(|c| (c as f64, out[c as usize]))
+                .collect()
+        };
+        let head = centres(first, true);
+        let tail = centres(last, false);
+        for (j, v) in out.iter_mut().enumerate().take(first) {
+            *v = lagrange(&head, j as f64);
+        }
+        for (j, v) in out.iter_mut().enumerate().skip(last + 1) {
+            *v = lagrange(&tail, j as f64);
+        }
+        out
+    }
+
+    /// `values` on the grid, linearly interpolated at the path's angles (the last grid interval
+    /// extended by at most one step past the grid's end).
+    pub fn at_path(&self, values: &[f64], angle_rad: &[f64]) -> Vec<f64> {
+        let n = values.len();
+        if n < 2 {
+            return vec![values.first().copied().unwrap_or(0.0); angle_rad.len()];
+        }
+        let step = self.step_rad();
+        angle_rad
+            .iter()
+            .map(|a| {
+                let x = a / step;
+                let j = (x.floor().max(0.0) as usize).min(n - 2);
+                let t = x - j as f64;
+                values[j] + t * (values[j + 1] - values[j])
+            })
+            .collect()
+    }
+}
+
+/// The polynomial through `points` (x, y) evaluated at `x` (Lagrange's form; 0 for none).
+fn lagrange(points: &[(f64, f64)], x: f64) -> f64 {
+    points
+        .iter()
+        .enumerate()
+        .map(|(i, &(xi, yi))| {
+            let others = points.iter().enumerate().filter(|(k, _)| *k != i);
+            yi * others
+                .map(|(_, &(xk, _))| (x - xk) / (xi - xk))
+                .product::<f64>()
+        })
+        .sum()
+}
+
+/// The least-squares straight line through `values` (against the index), at each index.
+fn least_squares_line(values: &[f64]) -> Vec<f64> {
+    let n = values.len() as f64;
+    let mid = (n - 1.0) / 2.0;
+    let mean = values.iter().sum::<f64>() / n.max(1.0);
+    let (mut num, mut den) = (0.0, 0.0);
+    for (j, v) in values.iter().enumerate() {
+        num += (j as f64 - mid) * (v - mean);
+        den += (j as f64 - mid).powi(2);
+    }
+    let slope = if den > 0.0 { num / den } else { 0.0 };
+    (0..values.len())
+        .map(|j| mean + slope * (j as f64 - mid))
+        .collect()
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+
+    /// A synthetic spiral of `revs` revolutions, `per_rev` points each, from radius `r0`
+    /// inward by `feed` per revolution, with height `z(ρ, θ)`.
+    pub(crate) fn spiral(
+        revs: f64,
+        per_rev: usize,
+        r0: f64,
+        feed: f64,
+        z: impl Fn(f64, f64) -> f64,
+    ) -> PathSignal {
+        let count = (revs * per_rev as f64).round() as usize + 1;
+        let mut s = PathSignal::default();
+        for k in 0..count {
+            let phi = k as f64 * TAU / per_rev as f64;
+            let rho = r0 - feed * phi / TAU;
+            s.angle_rad.push(phi);
+            s.rho_mm.push(rho);
+            s.z_mm.push(z(rho, phi));
+        }
+        s
+    }
+
+    #[test]
+    fn constant_angle_paths_sample_onto_themselves() {
+        let s = spiral(5.0, 100, 2.0, 0.1, |r, t| r * r + (3.0 * t).sin());
+        let u = s.uniform().unwrap();
+        assert_eq!(u.samples_per_rev, 100);
+        assert_eq!(u.len(), s.len());
+        for (a, b) in u.z_mm.iter().zip(&s.z_mm) {
+            assert!((a - b).abs() < 1e-12, "{a} {b}");
+        }
+    }
+
+    #[test]
+    fn uneven_paths_are_interpolated_linearly_at_their_densest_rate() {
+        // Steps of 0.01 rad for the first revolution, 0.05 rad after: M = ⌈2π/0.01⌉ = 629.
+        let mut s = PathSignal::default();
+        let mut phi = 0.0;
+        while phi < 3.0 * TAU {
+            s.angle_rad.push(phi);
+            s.rho_mm.push(1.0);
+            s.z_mm.push(2.0 * phi + 1.0);
+            phi += if phi < TAU { 0.01 } else { 0.05 };
+        }
+        let u = s.uniform().unwrap();
+        assert_eq!(u.samples_per_rev, 629);
+        // A linear z is reproduced exactly by linear interpolation (to rounding).
+        for (j, z) in u.z_mm.iter().enumerate() {
+            assert!((z - (2.0 * j as f64 * u.step_rad() + 1.0)).abs() < 1e-12);
+        }
+        let back = u.at_path(&u.z_mm, &s.angle_rad);
+        for (a, b) in back.iter().zip(&s.z_mm) {
+            assert!((a - b).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn bad_columns_are_errors_not_panics() {
+        let mut s = spiral(1.0, 10, 1.0, 0.1, |_, _| 0.0);
+        s.z_mm.pop();
+        assert!(matches!(s.uniform(), Err(SignalError::Ragged { .. })));
+        let one = spiral(0.0, 10, 1.0, 0.1, |_, _| 0.0);
+        assert!(matches!(
+            one.uniform(),
+            Err(SignalError::TooShort { points: 1, .. })
+        ));
+    }
+
+    #[test]
+    fn symmetric_part_removes_whole_harmonics_with_linear_amplitudes() {
+        // z = S(ρ) + a(ρ)·cos(3θ) + b(ρ)·sin(θ) with S quadratic and a, b linear in ρ: the
+        // double zeros of the triangle response leave only S's own smoothing, the triangle's
+        // variance (M² − 1)/6 samples² times ½S″·(f/M)², i.e. S″·f²·(1 − 1/M²)/12 (module
+        // docs), a constant here; the quadratic extrapolation at the ends is exact for it.
+        let sag = |r: f64| r * r;
+        let s = spiral(6.0, 64, 3.0, 0.1, |r, t| {
+            sag(r) + 0.5 * r * (3.0 * t).cos() + (1.0 - 0.2 * r) * t.sin()
+        });
+        let u = s.uniform().unwrap();
+        let sym = u.symmetric_part(&u.z_mm);
+        let smoothing = 2.0 * 0.1f64.powi(2) * (1.0 - 1.0 / 64f64.powi(2)) / 12.0;
+        for (j, v) in sym.iter().enumerate() {
+            let want = sag(u.rho_mm[j]) + smoothing;
+            // Running sums of 385 values below 10: rounding far below 1e-12.
+            assert!((v - want).abs() < 1e-12, "sample {j}: {v} vs {want}");
+        }
+    }
+
+    #[test]
+    fn extremes_of_a_sine_against_its_derivatives() {
+        // v = sin(2φ): slope 2, curvature 4; chord and second differences at 1000 points/rev
+        // are within (2·Δφ)²/6 ≈ 3e-5 relative of them.
+        let s = spiral(2.0, 1000, 1.0, 0.0, |_, t| (2.0 * t).sin());
+        let e = s.angle_extremes(&s.z_mm);
+        assert!((e.slope_mm_per_rad - 2.0).abs() < 2.0 * 3e-5);
+        assert!((e.curvature_mm_per_rad2 - 4.0).abs() < 4.0 * 3e-5);
+        // The largest slope is where cos(2φ) = ±1: φ a multiple of π/2, points 0, 250, ….
+        assert_eq!(e.slope_at % 250, 0);
+    }
+}

@@ -1,0 +1,882 @@
+//! Hybrid FTS/SSS splitting: the compensated path z becomes a slide channel Z and a fast tool
+//! servo channel W with `Z + W = z` (paper 000, "Evaluation of geometrical splitting for hybrid
+//! FTS/SSS process": low-order frequencies to the slow slide servo, high-order ones to the FTS;
+//! paper 002, "surface decomposition": a rotationally symmetric surface plus a freeform
+//! remainder). In every mode Z is computed first and `W = z − Z` at the path points, so the two
+//! add up to z to the rounding of one subtraction (1e-16 relative).
+//!
+//! **Symmetric** ([`SplitSpec::Symmetric`]): Z is the rotationally symmetric part S of
+//! [`crate::path_signal`] (the two-revolution triangle mean on the uniform angle grid,
+//! interpolated back to the points), W the freeform residual. S differs from the azimuthal mean
+//! by at most `|S″|·f²/12 + Σ|a_m″|·f²/(4π²m²)` (f the feed, a_m the amplitude of harmonic m,
+//! ″ = d²/dρ²), which is what W carries besides the freeform part.
+//!
+//! **Low-pass** ([`SplitSpec::LowPass`]): Z is z through the zero-phase filter
+//! `H(k) = 1/(1 + (k/k_c)^8)` (k the frequency, k_c the cutoff), the magnitude of a 4th-order
+//! Butterworth filter run forwards and backwards (H(k_c) = ½, flat to 0.4 % below k_c/2, −48 dB
+//! per octave above), applied in the frequency domain to the uniform grid of the path extended
+//! by [`EXTENSION_REVS`] revolutions before the rim and after the centre. A surface is periodic
+//! in θ, so the extension repeats the first (last) revolution of the non-symmetric residual on
+//! the symmetric part continued along its tangent: the joins are continuous in value and slope
+//! to within the change of the part over one revolution (a mirror image instead leaves a slope
+//! kink, which the filter turns into a transient of about `slope/(2π·k_c)` in W: 0.1 mm for a
+//! 0.5 mm tone of 6 cycles/rev at k_c = 9). The periodic FFT then joins the two extensions to
+//! each other 16 revolutions from the path, where the filter's impulse response, decaying like
+//! `e^(−2π·k_c·sin(π/8)·t)` over t revolutions, has fallen below 1e-8 even at the lowest automatic
+//! cutoff of ½ cycle/rev. Real and even, H delays nothing. Z is interpolated linearly back to the
+//! path points.
+//!
+//! **Automatic** ([`SplitSpec::Auto`], needs [`SplitLimits`]): the slide alone (`Z = z`,
+//! `W = 0`) if z keeps within the slide's velocity, acceleration and bandwidth; otherwise the
+//! lowest cutoff k* (cycles per revolution, in `[0.5, M/2]`, M the grid's samples per
+//! revolution) for which W's peak-to-valley fits the FTS stroke, found by bisection on log k to
+//! 0.1 % (W's PV falls as the cutoff rises: the bisection assumes it, and the k* returned always
+//! satisfies the stroke, being the bracket's upper end). Z at k* is then checked against the
+//! slide's velocity, acceleration and bandwidth (the cutoff, k*·n/60 Hz) and W against the
+//! FTS's bandwidth and acceleration.
+//!
+//! **Checks and speed.** A channel's velocity and acceleration are its largest slope and
+//! curvature against the spindle angle ([`PathSignal::angle_extremes`]) times ω and ω²; its
+//! bandwidth is the highest significant frequency of its non-symmetric part
+//! ([`crate::spectrum::highest_significant_cycles_per_rev`]) in Hz; the stroke is W's PV. Every
+//! figure is computed once per revolution-angle, so at another speed n′ a velocity or bandwidth
+//! scales by n′/n, an acceleration by (n′/n)², the stroke not at all. Where a check fails the
+//! verdict is [`Verdict::Infeasible`] with the failing checks and the highest speed at which
+//! every speed-dependent check passes for the same split geometry (cutoff in cycles per
+//! revolution), `n·min((limit/value)^(1/p))` over the checks (p = 1 or 2), rounded down to three
+//! significant digits; for the automatic split the larger of that speed for the slide alone and
+//! for k*. No speed helps when the stroke fails.
+
+use crate::field::{FieldError, positive};
+use crate::path_signal::{PathSignal, SignalError, UniformSignal, hz, omega};
+use crate::spectrum::highest_significant_cycles_per_rev;
+use rustfft::num_complex::Complex;
+use rustfft::{Fft, FftPlanner};
+use serde::{Deserialize, Serialize};
+use std::sync::Arc;
+use thiserror::Error;
+
+/// Order of the Butterworth response whose square is the low-pass ([`response`]).
+pub const BUTTERWORTH_ORDER: i32 = 4;
+
+/// The lowest cutoff the automatic split tries, cycles per revolution.
+pub const AUTO_MIN_CYCLES_PER_REV: f64 = 0.5;
+
+/// Revolutions added before and after the path for the low-pass (module docs).
+pub const EXTENSION_REVS: usize = 16;
+
+/// Relative precision of the automatic cutoff.
+pub const AUTO_PRECISION: f64 = 1e-3;
+
+/// How the path is split between the slide (Z) and the FTS (W): the job's `strategy.split`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum SplitSpec {
+    /// Z the rotationally symmetric part, W the residual (paper 002).
+    #[default]
+    Symmetric,
+    /// Z the zero-phase low-pass of z at `cutoff_hz`, W the rest (paper 000).
+    LowPass {
+        /// Cutoff frequency (half amplitude), Hz, in (0, the path's Nyquist frequency].
+        cutoff_hz: f64,
+    },
+    /// The slide alone if it can, else the lowest cutoff at which W fits the FTS stroke.
+    Auto,
+}
+
+/// The machine's limits as the splitter uses them.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SplitLimits {
+    /// FTS stroke (largest PV of W), mm.
+    pub fts_stroke_mm: f64,
+    /// FTS bandwidth, Hz.
+    pub fts_bandwidth_hz: f64,
+    /// FTS acceleration, mm/s².
+    pub fts_acceleration_mm_per_s2: f64,
+    /// Z slide velocity, mm/s.
+    pub slide_velocity_mm_per_s: f64,
+    /// Z slide acceleration, mm/s².
+    pub slide_acceleration_mm_per_s2: f64,
+    /// Z slide bandwidth, Hz.
+    pub slide_bandwidth_hz: f64,
+}
+
+/// A limit of [`SplitLimits`], named as its field.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Limit {
+    /// `fts_stroke_mm`: W's PV, mm.
+    FtsStrokeMm,
+    /// `fts_bandwidth_hz`: W's highest significant frequency, Hz.
+    FtsBandwidthHz,
+    /// `fts_acceleration_mm_per_s2`: W's largest acceleration, mm/s².
+    FtsAccelerationMmPerS2,
+    /// `slide_velocity_mm_per_s`: Z's largest velocity, mm/s.
+    SlideVelocityMmPerS,
+    /// `slide_acceleration_mm_per_s2`: Z's largest acceleration, mm/s².
+    SlideAccelerationMmPerS2,
+    /// `slide_bandwidth_hz`: the cutoff, or Z's highest significant frequency, Hz.
+    SlideBandwidthHz,
+}
+
+impl Limit {
+    /// How the value scales with the spindle speed: value ∝ n^p.
+    pub fn speed_power(self) -> i32 {
+        match self {
+            Limit::FtsStrokeMm => 0,
+            Limit::FtsBandwidthHz | Limit::SlideVelocityMmPerS | Limit::SlideBandwidthHz => 1,
+            Limit::FtsAccelerationMmPerS2 | Limit::SlideAccelerationMmPerS2 => 2,
+        }
+    }
+
+    /// The limit's value in `limits`.
+    pub fn of(self, limits: &SplitLimits) -> f64 {
+        match self {
+            Limit::FtsStrokeMm => limits.fts_stroke_mm,
+            Limit::FtsBandwidthHz => limits.fts_bandwidth_hz,
+            Limit::FtsAccelerationMmPerS2 => limits.fts_acceleration_mm_per_s2,
+            Limit::SlideVelocityMmPerS => limits.slide_velocity_mm_per_s,
+            Limit::SlideAccelerationMmPerS2 => limits.slide_acceleration_mm_per_s2,
+            Limit::SlideBandwidthHz => limits.slide_bandwidth_hz,
+        }
+    }
+}
+
+/// One channel figure against its limit.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Check {
+    /// Which limit.
+    pub limit: Limit,
+    /// The channel's figure, in the limit's unit.
+    pub value: f64,
+    /// The limit.
+    pub allowed: f64,
+    /// Radius where the figure is reached, mm, where it has one place.
+    pub at_rho_mm: Option<f64>,
+}
+
+impl Check {
+    /// Whether the figure is within the limit.
+    pub fn passes(&self) -> bool {
+        self.value <= self.allowed
+    }
+}
+
+/// What the split means for the machine.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "status", rename_all = "snake_case")]
+pub enum Verdict {
+    /// No limits were given.
+    Unchecked,
+    /// Every check passes.
+    Feasible {
+        /// W is zero: the slide cuts alone.
+        slide_alone: bool,
+        /// The checks.
+        checks: Vec<Check>,
+    },
+    /// Some check fails.
+    Infeasible {
+        /// The failing checks.
+        conflicts: Vec<Check>,
+        /// All checks.
+        checks: Vec<Check>,
+        /// The highest spindle speed at which the split passes, rev/min; `None` when no speed
+        /// helps (the stroke).
+        feasible_spindle_rpm: Option<f64>,
+    },
+}
+
+/// The two channels, one value per path point.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Split {
+    /// Slide channel Z, mm.
+    pub z_slide_mm: Vec<f64>,
+    /// FTS channel W = z − Z, mm.
+    pub w_fts_mm: Vec<f64>,
+    /// The low-pass cutoff, Hz (low-pass and automatic hybrid splits).
+    pub cutoff_hz: Option<f64>,
+    /// The checks against the limits.
+    pub verdict: Verdict,
+}
+
+/// A split that cannot be made.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum SplitError {
+    /// A setting is out of range.
+    ///
+    /// ```
+    /// use spiralcam::split::{split, SplitSpec};
+    /// let s = spiralcam::path_signal::PathSignal { angle_rad: vec![0.0, 1.0, 2.0], rho_mm: vec![1.0; 3], z_mm: vec![0.0; 3] };
+    /// let e = split(&s, &SplitSpec::LowPass { cutoff_hz: -1.0 }, 60.0, None).unwrap_err();
+    /// assert!(e.to_string().starts_with("strategy.split.cutoff_hz = -1: must be"));
+    /// ```
+    #[error(transparent)]
+    Field(#[from] FieldError),
+    /// The path cannot be analysed.
+    ///
+    /// ```
+    /// use spiralcam::split::{split, SplitSpec};
+    /// let e = split(&Default::default(), &SplitSpec::Symmetric, 60.0, None).unwrap_err();
+    /// assert!(e.to_string().starts_with("the path has 0 points"));
+    /// ```
+    #[error(transparent)]
+    Signal(#[from] SignalError),
+}
+
+/// The low-pass response at frequency `k` for cutoff `k_c` (any one unit).
+pub fn response(k: f64, k_c: f64) -> f64 {
+    1.0 / (1.0 + (k / k_c).abs().powi(2 * BUTTERWORTH_ORDER))
+}
+
+/// The zero-phase low-pass of one grid signal at any cutoff: the FFT of the extended signal is
+/// taken once.
+struct LowPass {
+    spectrum: Vec<Complex<f64>>,
+    inverse: Arc<dyn Fft<f64>>,
+    samples: usize,
+    samples_per_rev: usize,
+}
+
+impl LowPass {
+    fn new(grid: &UniformSignal) -> Self {
+        let extended = extend(grid, EXTENSION_REVS * grid.samples_per_rev);
+        let mut planner = FftPlanner::new();
+        let mut spectrum: Vec<Complex<f64>> =
+            extended.iter().map(|&v| Complex::new(v, 0.0)).collect();
+        let len = spectrum.len();
+        planner.plan_fft_forward(len).process(&mut spectrum);
+        Self {
+            spectrum,
+            inverse: planner.plan_fft_inverse(len),
+            samples: grid.len(),
+            samples_per_rev: grid.samples_per_rev,
+        }
+    }
+
+    /// The filtered grid signal at cutoff `k_c` cycles per revolution.
+    fn apply(&self, k_c: f64) -> Vec<f64> {
+        let len = self.spectrum.len();
+        let cpr_per_bin = self.samples_per_rev as f64 / len as f64;
+        let mut buf: Vec<Complex<f64>> = self
+            .spectrum
+            .iter()
+            .enumerate()
+            .map(|(j, c)| c * response(j.min(len - j) as f64 * cpr_per_bin, k_c) / len as f64)
+            .collect();
+        self.inverse.process(&mut buf);
+        let skip = EXTENSION_REVS * self.samples_per_rev;
+        buf[skip..skip + self.samples]
+            .iter()
+            .map(|c| c.re)
+            .collect()
+    }
+}
+
+/// The grid signal with `e` samples added before and after: the first (last) revolution of the
+/// non-symmetric residual repeated, on the symmetric part continued along its tangent over one
+/// revolution (module docs).
+fn extend(grid: &UniformSignal, e: usize) -> Vec<f64> {
+    let (x, m) = (&grid.z_mm, grid.samples_per_rev);
+    let n = x.len();
+    let sym = grid.symmetric_part(x);
+    let rev = m.min(n - 1).max(1);
+    let (slope_head, slope_tail) = (
+        (sym[rev] - sym[0]) / rev as f64,
+        (sym[n - 1] - sym[n - 1 - rev]) / rev as f64,
+    );
+    let residual = |j: usize| x[j] - sym[j];
+    let head = (0..e).map(|i| {
+        // Sample −(e − i): the residual one (or more) whole revolutions in.
+        let back = e - i;
+        let j = (rev - back % rev) % rev;
+        residual(j) + sym[0] - slope_head * back as f64
+    });
+    let tail = (1..=e).map(|ahead| {
+        let j = n - 1 - (rev - ahead % rev) % rev;
+        residual(j) + sym[n - 1] + slope_tail * ahead as f64
+    });
+    head.chain(x.iter().copied()).chain(tail).collect()
+}
+
+/// Splits `signal` at `spindle_rpm` as `spec` says, checking the channels against `limits` when
+/// given (module docs).
+pub fn split(
+    signal: &PathSignal,
+    spec: &SplitSpec,
+    spindle_rpm: f64,
+    limits: Option<&SplitLimits>,
+) -> Result<Split, SplitError> {
+    positive("machine.spindle_rpm", spindle_rpm)?;
+    if let Some(l) = limits {
+        validate(l)?;
+    }
+    let grid = signal.uniform()?;
+    let ctx = Context {
+        signal,
+        grid: &grid,
+        rpm: spindle_rpm,
+    };
+    match spec {
+        SplitSpec::Symmetric => Ok(ctx.finish(grid.symmetric_part(&grid.z_mm), None, limits)),
+        SplitSpec::LowPass { cutoff_hz } => {
+            let nyquist = hz(grid.samples_per_rev as f64 / 2.0, spindle_rpm);
+            if !(cutoff_hz.is_finite() && *cutoff_hz > 0.0 && *cutoff_hz <= nyquist) {
+                return Err(FieldError::new(
+                    "strategy.split.cutoff_hz",
+                    cutoff_hz,
+                    format!(
+                        "must be a finite number in (0, {nyquist}] Hz (the Nyquist frequency of the path at {spindle_rpm} rpm)"
+                    ),
+                )
+                .into());
+            }
+            let k_c = cutoff_hz * 60.0 / spindle_rpm;
+            Ok(ctx.finish(LowPass::new(&grid).apply(k_c), Some(k_c), limits))
+        }
+        SplitSpec::Auto => {
+            let Some(limits) = limits else {
+                return Err(FieldError::new(
+                    "strategy.split.type",
+                    "auto",
+                    "needs the machine's slide and FTS limits",
+                )
+                .into());
+            };
+            Ok(ctx.auto(limits))
+        }
+    }
+}
+
+/// Checks that every limit is a positive finite number.
+fn validate(l: &SplitLimits) -> Result<(), FieldError> {
+    positive("fts_stroke_mm", l.fts_stroke_mm)?;
+    positive("fts_bandwidth_hz", l.fts_bandwidth_hz)?;
+    positive("fts_acceleration_mm_per_s2", l.fts_acceleration_mm_per_s2)?;
+    positive("slide_velocity_mm_per_s", l.slide_velocity_mm_per_s)?;
+    positive(
+        "slide_acceleration_mm_per_s2",
+        l.slide_acceleration_mm_per_s2,
+    )?;
+    positive("slide_bandwidth_hz", l.slide_bandwidth_hz)?;
+    Ok(())
+}
+
+/// A signal, its grid and the speed.
+struct Context<'a> {
+    signal: &'a PathSignal,
+    grid: &'a UniformSignal,
+    rpm: f64,
+}
+
+impl Context<'_> {
+    /// The split with slide channel `z_grid` on the grid: Z at the points by interpolation,
+    /// W = z − Z, and the verdict.
+    fn finish(
+        &self,
+        z_grid: Vec<f64>,
+        cutoff_cpr: Option<f64>,
+        limits: Option<&SplitLimits>,
+    ) -> Split {
+        let z = self.grid.at_path(&z_grid, &self.signal.angle_rad);
+        let w: Vec<f64> = self
+            .signal
+            .z_mm
+            .iter()
+            .zip(&z)
+            .map(|(a, b)| a - b)
+            .collect();
+        let verdict = match limits {
+            None => Verdict::Unchecked,
+            Some(l) => verdict(
+                self.checks((&z, &z_grid), &w, cutoff_cpr, l),
+                self.rpm,
+                None,
+            ),
+        };
+        Split {
+            z_slide_mm: z,
+            w_fts_mm: w,
+            cutoff_hz: cutoff_cpr.map(|k| hz(k, self.rpm)),
+            verdict,
+        }
+    }
+
+    /// The automatic split (module docs).
+    fn auto(&self, limits: &SplitLimits) -> Split {
+        let z = &self.signal.z_mm;
+        let zero = vec![0.0; z.len()];
+        let alone = self.checks((z, &self.grid.z_mm), &zero, None, limits);
+        if alone.iter().all(Check::passes) {
+            return Split {
+                z_slide_mm: z.clone(),
+                w_fts_mm: zero,
+                cutoff_hz: None,
+                verdict: Verdict::Feasible {
+                    slide_alone: true,
+                    checks: alone,
+                },
+            };
+        }
+        let filter = LowPass::new(self.grid);
+        let k = self.lowest_cutoff(&filter, limits.fts_stroke_mm);
+        let mut s = self.finish(filter.apply(k), Some(k), None);
+        let checks = self.checks(
+            (&s.z_slide_mm, &filter.apply(k)),
+            &s.w_fts_mm,
+            Some(k),
+            limits,
+        );
+        s.verdict = verdict(checks, self.rpm, feasible_rpm(&alone, self.rpm));
+        s
+    }
+
+    /// The lowest cutoff, cycles per revolution, in [[`AUTO_MIN_CYCLES_PER_REV`], M/2] at which
+    /// W fits `stroke_mm`; M/2 when none does (the stroke check then fails).
+    fn lowest_cutoff(&self, filter: &LowPass, stroke_mm: f64) -> f64 {
+        let pv_w = |k: f64| {
+            let z = self.grid.at_path(&filter.apply(k), &self.signal.angle_rad);
+            peak_to_valley(self.signal.z_mm.iter().zip(&z).map(|(a, b)| a - b))
+        };
+        let (mut lo, mut hi) = (
+            AUTO_MIN_CYCLES_PER_REV,
+            self.grid.samples_per_rev as f64 / 2.0,
+        );
+        if pv_w(lo) <= stroke_mm {
+            return lo;
+        }
+        if pv_w(hi) > stroke_mm {
+            return hi;
+        }
+        while hi / lo > 1.0 + AUTO_PRECISION {
+            let mid = (lo * hi).sqrt();
+            if pv_w(mid) <= stroke_mm {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        hi
+    }
+
+    /// The six checks of the slide channel `(per point, on the grid)` and the FTS channel `w`
+    /// (per point); the slide's bandwidth figure is the cutoff when there is one, else Z's
+    /// highest significant frequency. W's bandwidth is taken on the grid as `z − Z`.
+    fn checks(
+        &self,
+        z: (&[f64], &[f64]),
+        w: &[f64],
+        cutoff_cpr: Option<f64>,
+        l: &SplitLimits,
+    ) -> Vec<Check> {
+        let s = self.signal;
+        let om = omega(self.rpm);
+        let (ez, ew) = (s.angle_extremes(z.0), s.angle_extremes(w));
+        let rho = |i: usize| s.rho_mm.get(i).copied();
+        let band = |v: &[f64]| hz(highest_significant_cycles_per_rev(self.grid, v), self.rpm);
+        let w_grid: Vec<f64> = self.grid.z_mm.iter().zip(z.1).map(|(a, b)| a - b).collect();
+        let check = |limit: Limit, value: f64, at: Option<f64>| Check {
+            limit,
+            value,
+            allowed: limit.of(l),
+            at_rho_mm: at,
+        };
+        vec![
+            check(
+                Limit::SlideVelocityMmPerS,
+                ez.slope_mm_per_rad * om,
+                rho(ez.slope_at),
+            ),
+            check(
+                Limit::SlideAccelerationMmPerS2,
+                ez.curvature_mm_per_rad2 * om * om,
+                rho(ez.curvature_at),
+            ),
+            check(
+                Limit::SlideBandwidthHz,
+                cutoff_cpr.map_or_else(|| band(z.1), |k| hz(k, self.rpm)),
+                None,
+            ),
+            check(Limit::FtsStrokeMm, peak_to_valley(w.iter().copied()), None),
+            check(
+                Limit::FtsBandwidthHz,
+                if w.iter().all(|v| *v == 0.0) {
+                    0.0
+                } else {
+                    band(&w_grid)
+                },
+                None,
+            ),
+            check(
+                Limit::FtsAccelerationMmPerS2,
+                ew.curvature_mm_per_rad2 * om * om,
+                rho(ew.curvature_at),
+            ),
+        ]
+    }
+}
+
+/// Largest minus smallest value (0 for none).
+fn peak_to_valley(values: impl Iterator<Item = f64>) -> f64 {
+    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+        (lo.min(v), hi.max(v))
+    });
+    if hi >= lo { hi - lo } else { 0.0 }
+}
+
+/// The verdict of `checks` at `rpm`; `other_rpm` a feasible speed found for another split.
+fn verdict(checks: Vec<Check>, rpm: f64, other_rpm: Option<f64>) -> Verdict {
+    if checks.iter().all(Check::passes) {
+        return Verdict::Feasible {
+            slide_alone: false,
+            checks,
+        };
+    }
+    let own = feasible_rpm(&checks, rpm);
+    let best = match (own, other_rpm) {
+        (Some(a), Some(b)) => Some(a.max(b)),
+        (a, b) => a.or(b),
+    };
+    Verdict::Infeasible {
+        conflicts: checks.iter().copied().filter(|c| !c.passes()).collect(),
+        checks,
+        feasible_spindle_rpm: best,
+    }
+}
+
+/// The highest speed at which every check passes (module docs); `None` when a check that does
+/// not depend on the speed fails.
+fn feasible_rpm(checks: &[Check], rpm: f64) -> Option<f64> {
+    let mut ratio = f64::INFINITY;
+    for c in checks {
+        let p = c.limit.speed_power();
+        if p == 0 {
+            if !c.passes() {
+                return None;
+            }
+        } else if c.value > 0.0 {
+            ratio = ratio.min((c.allowed / c.value).powf(1.0 / p as f64));
+        }
+    }
+    ratio.is_finite().then(|| round_down(rpm * ratio, 3))
+}
+
+/// `x` rounded down to `digits` significant digits.
+fn round_down(x: f64, digits: i32) -> f64 {
+    if x <= 0.0 || !x.is_finite() {
+        return x;
+    }
+    let scale = 10f64.powi(digits - 1 - x.log10().floor() as i32);
+    (x * scale).floor() / scale
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::path_signal::tests::spiral;
+    use std::f64::consts::TAU;
+
+    /// Amplitude of the tone of `k` cycles/rev in `v` over the points from revolution
+    /// `skip` up to (not including) revolution `revs − skip` (projection on sin and cos,
+    /// exact for whole frequencies over whole revolutions of equal steps).
+    fn tone(s: &PathSignal, v: &[f64], k: f64, skip: f64) -> f64 {
+        let inside = |a: f64| a >= skip * TAU - 1e-9 && a < s.span_rad() - skip * TAU - 1e-9;
+        let (mut c, mut d, mut n) = (0.0, 0.0, 0.0);
+        for (a, x) in s.angle_rad.iter().zip(v).filter(|(a, _)| inside(**a)) {
+            c += x * (k * a).cos();
+            d += x * (k * a).sin();
+            n += 1.0;
+        }
+        2.0 * (c * c + d * d).sqrt() / n
+    }
+
+    fn limits() -> SplitLimits {
+        SplitLimits {
+            fts_stroke_mm: 0.07,
+            fts_bandwidth_hz: 700.0,
+            fts_acceleration_mm_per_s2: 1e6,
+            slide_velocity_mm_per_s: 100.0,
+            slide_acceleration_mm_per_s2: 1e5,
+            slide_bandwidth_hz: 20.0,
+        }
+    }
+
+    fn two_tones(r: f64, t: f64) -> f64 {
+        0.1 + 0.5 * (6.0 * t).sin() + 0.02 * (47.0 * t).cos() + 0.0 * r
+    }
+
+    fn assert_adds_up(s: &PathSignal, out: &Split) {
+        for (i, z) in s.z_mm.iter().enumerate() {
+            let sum = out.z_slide_mm[i] + out.w_fts_mm[i];
+            assert!((sum - z).abs() <= 1e-9, "point {i}: {sum} vs {z}");
+        }
+    }
+
+    #[test]
+    fn low_pass_puts_each_tone_where_its_response_says() {
+        // Tones of 6 and 47 cycles/rev, cutoff at their geometric mean k_c: Z holds
+        // A·H(k/k_c), W the rest. With the even extension the ends carry a slope kink whose
+        // effect decays like the Butterworth impulse response, e^(−2π·k_c·sin(π/8)·t) per
+        // revolution t: below 1e-20 after the 3 revolutions left out, so the projections agree
+        // with the formula to rounding (1e-9 relative allowed).
+        let s = spiral(20.0, 256, 4.0, 0.05, two_tones);
+        let k_c = (6.0f64 * 47.0).sqrt();
+        let rpm = 60.0;
+        let out = split(&s, &SplitSpec::LowPass { cutoff_hz: k_c }, rpm, None).unwrap();
+        assert_adds_up(&s, &out);
+        for (k, a) in [(6.0, 0.5), (47.0, 0.02)] {
+            let h = response(k, k_c);
+            let (z, w) = (
+                tone(&s, &out.z_slide_mm, k, 3.0),
+                tone(&s, &out.w_fts_mm, k, 3.0),
+            );
+            assert!((z - a * h).abs() < 1e-9 * a, "Z at {k}: {z} vs {}", a * h);
+            assert!((w - a * (1.0 - h)).abs() < 1e-9 * a, "W at {k}: {w}");
+        }
+        assert_eq!(out.cutoff_hz, Some(k_c));
+        assert_eq!(out.verdict, Verdict::Unchecked);
+    }
+
+    #[test]
+    fn the_response_at_the_cutoff_is_one_half() {
+        // H(k_c) = 1/(1 + 1) for any order: a tone at the cutoff splits in two equal halves.
+        let s = spiral(12.0, 256, 2.0, 0.05, |_, t| 0.004 * (10.0 * t).sin());
+        let out = split(&s, &SplitSpec::LowPass { cutoff_hz: 50.0 }, 300.0, None).unwrap();
+        let z = tone(&s, &out.z_slide_mm, 10.0, 3.0);
+        assert!((z - 0.002).abs() < 1e-12, "{z}");
+        assert_eq!(response(3.0, 3.0), 0.5);
+        assert!((response(6.0, 3.0) - 1.0 / 257.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn the_low_pass_has_no_delay() {
+        // A Gaussian bump in the middle of the path: a zero-phase filter keeps it symmetric
+        // about its centre (to rounding), a causal one would shift it.
+        let centre = 10.0 * TAU;
+        let s = spiral(20.0, 200, 4.0, 0.05, |_, t| {
+            0.01 * (-((t - centre) / 0.5).powi(2)).exp()
+        });
+        let out = split(&s, &SplitSpec::LowPass { cutoff_hz: 1.0 }, 60.0, None).unwrap();
+        let mid = 2000; // point at the centre: 10 revolutions × 200
+        assert!((s.angle_rad[mid] - centre).abs() < 1e-9);
+        for d in 1..600 {
+            let (a, b) = (out.z_slide_mm[mid + d], out.z_slide_mm[mid - d]);
+            assert!((a - b).abs() < 1e-15, "±{d}: {a} {b}");
+        }
+        let top = out.z_slide_mm.iter().copied().fold(f64::MIN, f64::max);
+        assert_eq!(top, out.z_slide_mm[mid]);
+    }
+
+    #[test]
+    fn symmetric_split_leaves_the_freeform_part_to_the_fts() {
+        // z = sag(ρ) + freeform: W is the freeform part, to the symmetric part's error
+        // S″·f²(1 − 1/M²)/12 with S″ = 0.02 (module docs of path_signal), 4e-6 here, constant.
+        let s = spiral(10.0, 128, 3.0, 0.05, |r, t| {
+            0.01 * r * r + 0.003 * r * (2.0 * t).cos()
+        });
+        let out = split(&s, &SplitSpec::Symmetric, 100.0, None).unwrap();
+        assert_adds_up(&s, &out);
+        let bias = 0.02 * 0.05f64.powi(2) * (1.0 - 1.0 / 128f64.powi(2)) / 12.0;
+        for i in 0..s.len() {
+            let (r, t) = (s.rho_mm[i], s.angle_rad[i]);
+            let want = 0.003 * r * (2.0 * t).cos() - bias;
+            assert!(
+                (out.w_fts_mm[i] - want).abs() < 1e-12,
+                "{i}: {} {want}",
+                out.w_fts_mm[i]
+            );
+        }
+    }
+
+    #[test]
+    fn settings_out_of_range_are_named_errors() {
+        let s = spiral(4.0, 64, 1.0, 0.1, two_tones);
+        let msg = |spec: SplitSpec, l: Option<&SplitLimits>| {
+            split(&s, &spec, 60.0, l).unwrap_err().to_string()
+        };
+        // 64 points/rev at 60 rpm: Nyquist 32 Hz.
+        assert_eq!(
+            msg(SplitSpec::LowPass { cutoff_hz: 33.0 }, None),
+            "strategy.split.cutoff_hz = 33: must be a finite number in (0, 32] Hz (the Nyquist frequency of the path at 60 rpm)"
+        );
+        assert!(
+            msg(
+                SplitSpec::LowPass {
+                    cutoff_hz: f64::NAN
+                },
+                None
+            )
+            .starts_with("strategy.split.cutoff_hz = NaN")
+        );
+        assert!(
+            msg(SplitSpec::LowPass { cutoff_hz: 0.0 }, None)
+                .starts_with("strategy.split.cutoff_hz = 0")
+        );
+        assert_eq!(
+            msg(SplitSpec::Auto, None),
+            "strategy.split.type = auto: needs the machine's slide and FTS limits"
+        );
+        let bad = SplitLimits {
+            fts_stroke_mm: -1.0,
+            ..limits()
+        };
+        assert!(msg(SplitSpec::Auto, Some(&bad)).starts_with("fts_stroke_mm = -1"));
+        let e = split(&s, &SplitSpec::Symmetric, 0.0, None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("machine.spindle_rpm = 0"));
+    }
+
+    #[test]
+    fn a_tilted_flat_stays_on_the_slide() {
+        // z = t·ρ·cos θ: one cycle per revolution, velocity t·R·ω at most (at the rim),
+        // acceleration about t·R·ω²; both far inside the limits, 1 cycle/rev = 8.3 Hz at
+        // 500 rpm inside 20 Hz.
+        let t = 0.05f64.to_radians().tan();
+        let s = spiral(50.0, 360, 10.0, 0.2, |r, a| t * r * a.cos());
+        let out = split(&s, &SplitSpec::Auto, 500.0, Some(&limits())).unwrap();
+        assert!(out.w_fts_mm.iter().all(|w| *w == 0.0));
+        assert_eq!(out.z_slide_mm, s.z_mm);
+        let Verdict::Feasible {
+            slide_alone: true,
+            checks,
+        } = &out.verdict
+        else {
+            panic!("{:?}", out.verdict)
+        };
+        // dz/dφ = −t·(b·cos φ + ρ·sin φ), b = f/2π: largest at the first φ = π/2, where
+        // ρ = R − f/4, as t·√(ρ² + b²) (b²/2ρ² = 5e-6 relative); the chord slope reads it
+        // low by Δ²/24 = 1.3e-5 (Δ = 1°). So t·(R − f/4)·ω within 1e-4 relative.
+        let om = TAU * 500.0 / 60.0;
+        let v = checks[0].value;
+        let want = t * (10.0 - 0.2 / 4.0) * om;
+        assert!((v - want).abs() < 1e-4 * want, "{v} vs {want}");
+        // The acceleration: d²z/dφ² = t·(2b·sin φ − ρ·cos φ), largest at the first interior
+        // point (φ = Δ, ρ = R − b·Δ; φ = 0 has no second difference), read by the second
+        // difference within Δ²/12 = 2.5e-5 relative.
+        let acc = checks[1].value;
+        let (d, b) = (1f64.to_radians(), 0.2 / TAU);
+        let want = t * ((10.0 - b * d) * d.cos() - 2.0 * b * d.sin()) * om * om;
+        assert!((acc - want).abs() < 1e-4 * want, "{acc} vs {want}");
+        // One cycle per revolution, 8.33 Hz, to the reach of the Hann sidelobes above the 1 %
+        // threshold: 3.5 bins of 1/50 cycle/rev (0.17 Hz).
+        let bw = checks[2].value;
+
+        assert!(
+            (bw - 500.0 / 60.0).abs() <= 3.5 * 500.0 / 60.0 / 50.0,
+            "{bw}"
+        );
+    }
+
+    #[test]
+    fn content_beyond_the_slide_bandwidth_goes_to_the_fts() {
+        // 6 and 47 cycles/rev at 60 rpm: 47 Hz is beyond the slide's 20 Hz, so the slide alone
+        // fails; the 1 mm PV of the 6 Hz tone is beyond the 70 µm stroke, so the cutoff must
+        // keep most of it on Z: (6/k)^8 ≲ (70 − 40)/1000 puts k* near 9.3 cycles/rev.
+        let s = spiral(20.0, 256, 4.0, 0.05, two_tones);
+        let out = split(&s, &SplitSpec::Auto, 60.0, Some(&limits())).unwrap();
+        assert_adds_up(&s, &out);
+        let Verdict::Feasible {
+            slide_alone: false,
+            checks,
+        } = &out.verdict
+        else {
+            panic!("{:?}", out.verdict)
+        };
+        let fc = out.cutoff_hz.unwrap();
+        assert!(fc > 6.0 && fc < 20.0, "{fc}");
+        let pv = |v: &[f64]| peak_to_valley(v.iter().copied());
+        assert!(pv(&out.w_fts_mm) <= 0.07 && checks[3].value == pv(&out.w_fts_mm));
+        // The lowest such cutoff, to the search's precision.
+        let lower = split(
+            &s,
+            &SplitSpec::LowPass {
+                cutoff_hz: fc / (1.0 + 2.0 * AUTO_PRECISION),
+            },
+            60.0,
+            None,
+        )
+        .unwrap();
+        assert!(pv(&lower.w_fts_mm) > 0.07);
+        // Each tone where the response at k* puts it (as in the low-pass test).
+        for (k, a) in [(6.0, 0.5), (47.0, 0.02)] {
+            let h = response(k, fc);
+            assert!((tone(&s, &out.z_slide_mm, k, 3.0) - a * h).abs() < 1e-9 * a);
+            assert!((tone(&s, &out.w_fts_mm, k, 3.0) - a * (1.0 - h)).abs() < 1e-9 * a);
+        }
+    }
+
+    #[test]
+    fn an_infeasible_split_says_why_and_which_speed_would_do() {
+        // As above with a slide of 3 Hz: at 60 rpm the cutoff k* ≈ 9.3 Hz exceeds it, and no
+        // other check is near its limit (Z: 6·0.5·ω = 19 mm/s of 100, 36·0.5·ω² = 710 mm/s² of
+        // 1e5; W: 47 Hz of 700, 47²·0.02·ω² = 1.7e3 mm/s² of 1e6). The bandwidth scales with
+        // n, so the speed is 60·3/k* rpm (k* in Hz at 60 rpm = cycles/rev), rounded down to three
+        // digits; the slide alone would need 60·3/47 = 3.8 rpm, lower.
+        let s = spiral(20.0, 256, 4.0, 0.05, two_tones);
+        let slow_slide = SplitLimits {
+            slide_bandwidth_hz: 3.0,
+            ..limits()
+        };
+        let out = split(&s, &SplitSpec::Auto, 60.0, Some(&slow_slide)).unwrap();
+        assert_adds_up(&s, &out);
+        let k_star = out.cutoff_hz.unwrap();
+        let Verdict::Infeasible {
+            conflicts,
+            feasible_spindle_rpm: Some(rpm),
+            ..
+        } = &out.verdict
+        else {
+            panic!("{:?}", out.verdict)
+        };
+        assert_eq!(conflicts.len(), 1, "{conflicts:?}");
+        assert_eq!(conflicts[0].limit, Limit::SlideBandwidthHz);
+        assert_eq!((conflicts[0].value, conflicts[0].allowed), (k_star, 3.0));
+        let by_hand = 60.0 * 3.0 / k_star;
+        assert!(
+            *rpm <= by_hand && *rpm > by_hand * (1.0 - 1e-2),
+            "{rpm} vs {by_hand}"
+        );
+        // At that speed the same geometry passes.
+        let again = split(&s, &SplitSpec::Auto, *rpm, Some(&slow_slide)).unwrap();
+        assert!(
+            matches!(
+                again.verdict,
+                Verdict::Feasible {
+                    slide_alone: false,
+                    ..
+                }
+            ),
+            "{:?}",
+            again.verdict
+        );
+        assert!((again.cutoff_hz.unwrap() * 60.0 / rpm - k_star).abs() < 1e-9 * k_star);
+        // A stroke smaller than the 47 cycles/rev tone's PV (40 µm) pushes the cutoff above
+        // 47 cycles/rev (both tones on the slide): 60·3/k* is now below the slide alone's
+        // 60·3/47 rpm (its bandwidth figure, within the spectrum's reach of 3.5 bins), which
+        // is the speed offered.
+        let short = SplitLimits {
+            fts_stroke_mm: 0.01,
+            ..slow_slide
+        };
+        let out = split(&s, &SplitSpec::Auto, 60.0, Some(&short)).unwrap();
+        let k = out.cutoff_hz.unwrap();
+        let Verdict::Infeasible {
+            feasible_spindle_rpm: Some(slower),
+            ..
+        } = out.verdict
+        else {
+            panic!("{:?}", out.verdict)
+        };
+        assert!(
+            k > 47.0 && 180.0 / k < slower && slower < *rpm,
+            "{k} {slower}"
+        );
+        let alone = 180.0 / 47.0;
+        assert!(
+            (slower - alone).abs() < alone * 3.5 / 20.0 / 47.0 + 0.01,
+            "{slower}"
+        );
+    }
+}

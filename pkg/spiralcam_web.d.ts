@@ -195,6 +195,19 @@ export function csv_table(job: any, progress: Function): Uint8Array;
 export function default_job(): string;
 
 /**
+ * The fast tool servo's table of a split `job` (`c_deg,x_mm,w_mm`), byte for byte what
+ * `spiralcam plan JOB --fts-csv FILE` writes.
+ */
+export function fts_table(job: any, progress: Function): Uint8Array;
+
+/**
+ * The example machines (`spiralcam::machine::presets`) as JSON: a list of objects with `key`,
+ * `label`, `description`, `block_rate_hz`, `x_slide`, `z_slide` and `fts` (null: none), in the
+ * job's units, for the page's machine presets.
+ */
+export function machine_presets(): string;
+
+/**
  * The NC program of `job`, byte for byte what `spiralcam plan JOB --nc FILE` writes.
  */
 export function nc_program(job: any, progress: Function): Uint8Array;
@@ -235,6 +248,8 @@ export interface InitOutput {
     readonly colormap_stops: () => [number, number];
     readonly csv_table: (a: any, b: any) => [number, number, number, number];
     readonly default_job: () => [number, number];
+    readonly fts_table: (a: any, b: any) => [number, number, number, number];
+    readonly machine_presets: () => [number, number];
     readonly nc_program: (a: any, b: any) => [number, number, number, number];
     readonly plan: (a: any, b: any) => [number, number, number];
     readonly planned_csv_file_name: (a: number) => [number, number];
@@ -265,8 +280,8 @@ export interface InitOutput {
     readonly viewer_z_exaggeration: (a: number) => number;
     readonly viewer_zoom: (a: number, b: number) => void;
     readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_44: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_45: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_46: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_47: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h6a9a4c771fb11aad: (a: number, b: number, c: any, d: any) => void;
     readonly wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__hc37317138617a3f5: (a: number, b: number, c: any) => void;

@@ -71,6 +71,10 @@ pub struct StrategySpec {
     /// ([`crate::compensate::Compensation`]).
     #[serde(default, skip_serializing_if = "Compensation::is_one_way")]
     pub compensation: Compensation,
+    /// The split of the path between the Z slide and a fast tool servo
+    /// ([`crate::split::SplitSpec`]); absent: the slide cuts alone.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub split: Option<crate::split::SplitSpec>,
 }
 
 /// A job that cannot be read.

@@ -13,6 +13,7 @@ pub mod axis_checks;
 pub mod compensate;
 pub mod data_file;
 pub mod display;
+pub mod dynamics;
 pub mod field;
 pub mod hcaa;
 pub mod job;

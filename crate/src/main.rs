@@ -1,7 +1,7 @@
 //! The spiralcam command-line tool.
 //!
 //! ```text
-//! spiralcam plan JOB.json [--nc FILE] [--csv FILE] [--report FILE]
+//! spiralcam plan JOB.json [--nc FILE] [--csv FILE] [--fts-csv FILE] [--report FILE]
 //! spiralcam analyse JOB.json [--report FILE] [--maps PREFIX]
 //! spiralcam sag JOB.json --at POINTS.csv
 //! ```
@@ -27,9 +27,11 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 const USAGE: &str = "usage:
-  spiralcam plan JOB.json [--nc FILE] [--csv FILE] [--report FILE]
-      plan the job; write the NC program, the point table (CSV) and the report (JSON,
-      standard output when --report is not given)
+  spiralcam plan JOB.json [--nc FILE] [--csv FILE] [--fts-csv FILE] [--report FILE]
+      plan the job; write the NC program, the point table (CSV), the fast tool servo's
+      table (c_deg,x_mm,w_mm; split jobs) and the report (JSON, standard output when
+      --report is not given); with strategy.split or machine limits the report carries
+      the spectrum, the split and the axis checks
   spiralcam analyse JOB.json [--report FILE] [--maps PREFIX]
       the accuracy of the planned path: linearization error between NC points, the
       predicted machined form and the tool angles needed (JSON); --maps writes the maps
@@ -161,11 +163,17 @@ impl Output {
 }
 
 fn plan(args: &[String]) -> Result<(), Failure> {
-    let args = parse(args, &["--nc", "--csv", "--report"])?;
+    let args = parse(args, &["--nc", "--csv", "--fts-csv", "--report"])?;
     let job = read_job(&args.job)?;
     let planner = Planner::new(&job).map_err(run_err)?;
     let mut nc = args.get("--nc").map(Output::create).transpose()?;
     let mut csv = args.get("--csv").map(Output::create).transpose()?;
+    if args.get("--fts-csv").is_some() && job.strategy.split.is_none() {
+        return Err(Failure::Usage(
+            "--fts-csv needs a split path: set strategy.split in the job".into(),
+        ));
+    }
+    let mut fts = args.get("--fts-csv").map(Output::create).transpose()?;
     let tty = std::io::stderr().is_terminal();
     let mut progress = |p: Progress| {
         if tty {
@@ -177,15 +185,17 @@ fn plan(args: &[String]) -> Result<(), Failure> {
         nc: nc.as_mut().map(|o| &mut o.writer as &mut dyn Write),
         csv: csv.as_mut().map(|o| &mut o.writer as &mut dyn Write),
         display: None::<&mut DisplayPath>,
+        z_slide: None,
+        fts_table: fts.as_mut().map(|o| &mut o.writer as &mut dyn Write),
     };
-    let result = planner.run(sinks, &mut progress);
+    let result = planner.run_with_dynamics(sinks, &mut progress);
     if tty {
         eprintln!();
     }
     let report = match result {
         Ok(r) => r,
         Err(e) => {
-            for output in [nc, csv].into_iter().flatten() {
+            for output in [nc, csv, fts].into_iter().flatten() {
                 output.discard();
             }
             return Err(run_err(e));
@@ -193,6 +203,7 @@ fn plan(args: &[String]) -> Result<(), Failure> {
     };
     nc.map(Output::commit).transpose()?;
     csv.map(Output::commit).transpose()?;
+    fts.map(Output::commit).transpose()?;
     for w in &report.warnings {
         eprintln!("warning: {w}");
     }

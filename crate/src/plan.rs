@@ -9,7 +9,7 @@ use crate::compensate::{Compensation, NoseCompensator};
 use crate::display::DisplayPath;
 use crate::field::FieldError;
 use crate::job::{Job, JobError, StrategySpec};
-use crate::nc::{CsvWriter, Header, NcError, NcWriter};
+use crate::nc::{CsvWriter, FtsTableWriter, Header, NcError, NcWriter};
 use crate::reach::{self, Reach};
 use crate::report::{Report, Stats};
 use crate::spiral::{Sampling, Spiral, SpiralPoint};
@@ -76,6 +76,12 @@ pub enum PlanError {
     /// ```
     #[error("cancelled")]
     Cancelled,
+    /// The path cannot be split between the slide and the servo.
+    #[error(transparent)]
+    Split(#[from] crate::split::SplitError),
+    /// The slide heights given for a split path ended before the path (at this point).
+    #[error("the split path has no slide height for point {0}: it was split from another plan")]
+    SplitLength(u64),
 }
 
 impl From<FieldError> for PlanError {
@@ -102,6 +108,11 @@ pub struct Sinks<'a> {
     pub csv: Option<&'a mut dyn Write>,
     /// The decimated copy for display.
     pub display: Option<&'a mut DisplayPath>,
+    /// The slide's share Z of every point's height, mm, for a path split with a fast tool
+    /// servo ([`crate::dynamics::Dynamics`]): the program then carries the servo's word too.
+    pub z_slide: Option<&'a [f64]>,
+    /// The servo's table (`c_deg,x_mm,w_mm`), written when `z_slide` is given.
+    pub fts_table: Option<&'a mut dyn Write>,
 }
 
 /// How often the progress callback is called, in points.
@@ -370,6 +381,39 @@ impl Planner {
         )
     }
 
+    /// Plans the whole path as [`Self::run`] does, after the machine dynamics when the job asks
+    /// for them ([`crate::dynamics::wanted`]): a first pass plans the path into memory,
+    /// analyses and splits it, the second writes it with the slide's share and the servo's
+    /// word (and the servo's table). The report carries the dynamics; the progress runs twice.
+    pub fn run_with_dynamics(
+        &self,
+        sinks: Sinks,
+        progress: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+    ) -> Result<Report, PlanError> {
+        if !crate::dynamics::wanted(&self.job) {
+            return self.run(sinks, progress);
+        }
+        let dynamics = crate::dynamics::Dynamics::run(self, progress)?;
+        let Sinks {
+            nc,
+            csv,
+            display,
+            fts_table,
+            ..
+        } = sinks;
+        let sinks = Sinks {
+            nc: nc.map(|w| w as &mut dyn Write),
+            csv: csv.map(|w| w as &mut dyn Write),
+            display,
+            z_slide: dynamics.z_slide_mm.as_deref(),
+            fts_table: fts_table.map(|w| w as &mut dyn Write),
+        };
+        let mut report = self.run(sinks, progress)?;
+        report.warnings.extend(dynamics.report.warnings());
+        report.dynamics = Some(dynamics.report);
+        Ok(report)
+    }
+
     /// Plans the whole path into the sinks and returns the report. The NC program is always
     /// generated (into a byte counter when no sink is given) so the report can state its size.
     /// `progress` is called every [`PROGRESS_EVERY`] points and at the end; returning
@@ -387,6 +431,14 @@ impl Planner {
         let mut nc = NcWriter::new(nc_out, &self.job.output, &self.header())?;
         let conv = self.job.output.conventions();
         let mut csv = sinks.csv.map(|w| CsvWriter::new(w, conv)).transpose()?;
+        let z_slide = sinks.z_slide;
+        let mut fts_table = match z_slide {
+            Some(_) => sinks
+                .fts_table
+                .map(|w| FtsTableWriter::new(w, conv))
+                .transpose()?,
+            None => None,
+        };
         let mut display = sinks.display;
         let total = self.spiral.point_count_hint();
         let mut stats = Stats::default();
@@ -400,7 +452,16 @@ impl Planner {
             }
             self.compensate_batch(stats.points, &input, &mut output)?;
             for (p, folds) in &output {
-                nc.point(p)?;
+                match z_slide.map(|z| z.get(stats.points as usize)) {
+                    None => nc.point(p)?,
+                    Some(Some(&z)) => {
+                        nc.point_split(p, z)?;
+                        if let Some(t) = fts_table.as_mut() {
+                            t.point(p, z)?;
+                        }
+                    }
+                    Some(None) => return Err(PlanError::SplitLength(stats.points)),
+                }
                 if let Some(csv) = csv.as_mut() {
                     csv.point(p)?;
                 }
@@ -425,6 +486,9 @@ impl Planner {
         let nc_bytes = nc.finish()?;
         if let Some(csv) = csv {
             csv.finish()?;
+        }
+        if let Some(t) = fts_table {
+            t.finish()?;
         }
         let _ = progress(Progress {
             done: stats.points,

@@ -183,6 +183,10 @@ pub struct Report {
     pub shallow_concave_zones: usize,
     /// Findings an operator must read before cutting.
     pub warnings: Vec<String>,
+    /// Spectrum, split and axis checks, when the job asks for them
+    /// ([`crate::dynamics::wanted`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dynamics: Option<crate::dynamics::DynamicsReport>,
 }
 
 impl Report {
@@ -251,6 +255,7 @@ impl Report {
             two_way_loop_points: stats.loop_points,
             first_two_way_loop_at: stats.first_loop.map(|(r, t)| Location::new(r, t)),
             concave_zones,
+            dynamics: None,
             shallow_concave_zones: reach.shallow_zones,
             warnings,
         }

@@ -177,6 +177,7 @@ fn library_output(job: &Job) -> (Vec<u8>, Vec<u8>) {
                 nc: Some(&mut nc),
                 csv: Some(&mut csv),
                 display: None,
+                ..Default::default()
             },
             &mut |_| ControlFlow::Continue(()),
         )

@@ -36,6 +36,7 @@ fn run(p: &Planner) -> (Vec<u8>, Vec<u8>) {
                 nc: Some(&mut nc),
                 csv: Some(&mut csv),
                 display: None,
+                ..Default::default()
             },
             &mut |_| ControlFlow::Continue(()),
         )

@@ -146,7 +146,7 @@ pub fn plan(job: JsValue, progress: &js_sys::Function) -> Result<Planned, JsErro
         ..Default::default()
     };
     let report = planner
-        .run(sinks, &mut reporter(progress))
+        .run_with_dynamics(sinks, &mut reporter(progress))
         .map_err(|e| JsError::new(&e.to_string()))?;
     let mesh = SurfaceMesh::for_surface(planner.surface(), planner.job().part_radius_mm())
         .map_err(|e| JsError::new(&e.to_string()))?;
@@ -178,6 +178,24 @@ pub fn csv_table(job: JsValue, progress: &js_sys::Function) -> Result<Vec<u8>, J
     })
 }
 
+/// The example machines (`spiralcam::machine::presets`) as JSON: a list of objects with `key`,
+/// `label`, `description`, `block_rate_hz`, `x_slide`, `z_slide` and `fts` (null: none), in the
+/// job's units, for the page's machine presets.
+#[wasm_bindgen]
+pub fn machine_presets() -> String {
+    serde_json::to_string(&spiralcam::machine::presets()).unwrap_or_default()
+}
+
+/// The fast tool servo's table of a split `job` (`c_deg,x_mm,w_mm`), byte for byte what
+/// `spiralcam plan JOB --fts-csv FILE` writes.
+#[wasm_bindgen]
+pub fn fts_table(job: JsValue, progress: &js_sys::Function) -> Result<Vec<u8>, JsError> {
+    output_file(job, progress, |out| Sinks {
+        fts_table: Some(out),
+        ..Default::default()
+    })
+}
+
 /// Plans `job` into the one sink that `sinks` makes of a byte buffer, and returns the bytes.
 fn output_file(
     job: JsValue,
@@ -187,7 +205,7 @@ fn output_file(
     let planner = read_job(job)?;
     let mut out = Vec::new();
     planner
-        .run(sinks(&mut out), &mut reporter(progress))
+        .run_with_dynamics(sinks(&mut out), &mut reporter(progress))
         .map_err(|e| JsError::new(&e.to_string()))?;
     Ok(out)
 }

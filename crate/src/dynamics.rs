@@ -1,0 +1,273 @@
+//! Machine dynamics of a planned path (issue 5): the path as a signal of time at the spindle
+//! speed, its amplitude spectrum and instantaneous frequency per radius band
+//! ([`crate::spectrum`], paper 000's FFT and Hilbert transform), the split between the slide
+//! and a fast tool servo ([`crate::split`], papers 000 and 002), and every point's axis
+//! velocities and accelerations against the machine ([`crate::axis_checks`]).
+//!
+//! It runs over the whole path in memory (the FFT needs it: about 100 bytes a point), before
+//! the NC program is written, when the job asks for it: a `strategy.split`, or any limit in
+//! `machine` (slides, FTS, block rate). The program is then written in a second pass with the
+//! slide's share `Z` and the servo's `W` ([`crate::nc::NcWriter::point_split`]).
+
+use crate::axis_checks::{AxisReport, AxisSample, check_axes};
+use crate::job::Job;
+use crate::machine::MachineSpec;
+use crate::path_signal::PathSignal;
+use crate::plan::{PROGRESS_EVERY, PathPoint, PlanError, Planner, Progress};
+use crate::spectrum::{BandFrequency, Spectrum, amplitude_spectrum, instantaneous_frequency};
+use crate::split::{Limit, SplitLimits, SplitSpec, Verdict, split};
+use serde::Serialize;
+use std::ops::ControlFlow;
+
+/// Bins of the spectrum kept for display (peaks survive the decimation).
+pub const SPECTRUM_BINS: usize = 2048;
+
+/// Radius bands of the instantaneous frequency.
+pub const FREQUENCY_BANDS: usize = 32;
+
+/// What the dynamics found, for the report.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DynamicsReport {
+    /// The amplitude spectrum of the path's non-symmetric part at the spindle speed.
+    pub spectrum: Spectrum,
+    /// Its instantaneous frequency per radius band, from the rim to the centre.
+    pub instantaneous_frequency: Vec<BandFrequency>,
+    /// The split, when the job asks for one.
+    pub split: Option<SplitReport>,
+    /// Every point's axis velocities and accelerations against the machine.
+    pub axes: AxisReport,
+    /// The slide's and the servo's channels along the path, for plots.
+    pub channels: Option<ChannelProfile>,
+}
+
+/// The two channels along the path in at most [`PROFILE_BUCKETS`] runs of consecutive points,
+/// each with its range of radius and the lowest and highest Z and W in it (an envelope: a
+/// servo channel oscillating faster than the buckets keeps its full swing).
+#[derive(Debug, Clone, PartialEq, Serialize, Default)]
+pub struct ChannelProfile {
+    /// Radius at the start of each run, mm.
+    pub rho_mm: Vec<f64>,
+    /// Lowest Z of the slide in each run, mm.
+    pub z_min_mm: Vec<f64>,
+    /// Highest Z of the slide in each run, mm.
+    pub z_max_mm: Vec<f64>,
+    /// Lowest W of the servo in each run, µm.
+    pub w_min_um: Vec<f64>,
+    /// Highest W of the servo in each run, µm.
+    pub w_max_um: Vec<f64>,
+}
+
+/// Runs of points in a [`ChannelProfile`].
+pub const PROFILE_BUCKETS: usize = 1024;
+
+impl ChannelProfile {
+    /// The profile of the channels `z` and `w` (mm) at the radii `rho` (mm).
+    pub fn of(rho: &[f64], z: &[f64], w: &[f64]) -> Self {
+        let n = rho.len().min(z.len()).min(w.len());
+        let size = n.div_ceil(PROFILE_BUCKETS).max(1);
+        let mut p = Self::default();
+        for start in (0..n).step_by(size) {
+            let end = (start + size).min(n);
+            let range = |v: &[f64]| {
+                v[start..end]
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
+                        (lo.min(x), hi.max(x))
+                    })
+            };
+            let (zl, zh) = range(z);
+            let (wl, wh) = range(w);
+            p.rho_mm.push(rho[start]);
+            p.z_min_mm.push(zl);
+            p.z_max_mm.push(zh);
+            p.w_min_um.push(wl * 1e3);
+            p.w_max_um.push(wh * 1e3);
+        }
+        p
+    }
+}
+
+/// The split, summarised.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SplitReport {
+    /// How it was asked for.
+    pub spec: SplitSpec,
+    /// The low-pass cutoff, Hz (low-pass and automatic splits with the servo).
+    pub cutoff_hz: Option<f64>,
+    /// Peak-to-valley of the slide's channel Z, µm.
+    pub z_slide_pv_um: f64,
+    /// Peak-to-valley of the servo's channel W, µm.
+    pub w_fts_pv_um: f64,
+    /// The channels against the machine's limits.
+    pub verdict: Verdict,
+}
+
+/// The dynamics of a path, and the slide's share of every point when it is split.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Dynamics {
+    /// The figures.
+    pub report: DynamicsReport,
+    /// Z of the slide at every point, mm, when the path is split.
+    pub z_slide_mm: Option<Vec<f64>>,
+    /// W of the servo at every point, mm, when the path is split.
+    pub w_fts_mm: Option<Vec<f64>>,
+}
+
+/// Whether `job` asks for the dynamics: a split, or a limit of the machine to check.
+pub fn wanted(job: &Job) -> bool {
+    let m = &job.machine;
+    job.strategy.split.is_some()
+        || m.block_rate_hz.is_some()
+        || m.x_slide.is_some()
+        || m.z_slide.is_some()
+        || m.fts.is_some()
+}
+
+/// The machine's limits in the splitter's units, when it has a Z slide and a servo.
+pub fn split_limits(m: &MachineSpec) -> Option<SplitLimits> {
+    let (z, fts) = (m.z_slide.as_ref()?, m.fts.as_ref()?);
+    Some(SplitLimits {
+        fts_stroke_mm: fts.stroke_um / 1000.0,
+        fts_bandwidth_hz: fts.bandwidth_hz,
+        fts_acceleration_mm_per_s2: fts.acceleration_m_per_s2 * 1000.0,
+        slide_velocity_mm_per_s: z.velocity_mm_per_min / 60.0,
+        slide_acceleration_mm_per_s2: z.acceleration_mm_per_s2,
+        slide_bandwidth_hz: z.bandwidth_hz,
+    })
+}
+
+fn pv_um(values: &[f64]) -> f64 {
+    let (lo, hi) = values
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        });
+    if lo <= hi { (hi - lo) * 1e3 } else { 0.0 }
+}
+
+/// The job field of a splitter's limit, with the splitter's unit where it differs.
+pub fn job_field(limit: Limit) -> &'static str {
+    match limit {
+        Limit::FtsStrokeMm => "machine.fts.stroke_um (as mm)",
+        Limit::FtsBandwidthHz => "machine.fts.bandwidth_hz",
+        Limit::FtsAccelerationMmPerS2 => "machine.fts.acceleration_m_per_s2 (as mm/s²)",
+        Limit::SlideVelocityMmPerS => "machine.z_slide.velocity_mm_per_min (as mm/s)",
+        Limit::SlideAccelerationMmPerS2 => "machine.z_slide.acceleration_mm_per_s2",
+        Limit::SlideBandwidthHz => "machine.z_slide.bandwidth_hz",
+    }
+}
+
+impl DynamicsReport {
+    /// What an operator must read before cutting: the axis checks' warnings and a split that
+    /// exceeds the machine, with the speed that would do.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut out = self.axes.warnings.clone();
+        if let Some(SplitReport {
+            verdict:
+                Verdict::Infeasible {
+                    conflicts,
+                    feasible_spindle_rpm,
+                    ..
+                },
+            ..
+        }) = &self.split
+        {
+            let what: Vec<String> = conflicts
+                .iter()
+                .map(|c| format!("{} {} > {}", job_field(c.limit), c.value, c.allowed))
+                .collect();
+            let speed = match feasible_spindle_rpm {
+                Some(n) => format!("feasible at {n} rpm or less"),
+                None => "no spindle speed makes it feasible (the stroke)".to_string(),
+            };
+            out.push(format!(
+                "the split exceeds the machine: {}; {speed}",
+                what.join(", ")
+            ));
+        }
+        out
+    }
+}
+
+impl Dynamics {
+    /// Plans the path of `planner` into memory and analyses it (module docs); `progress` as
+    /// for [`Planner::run`].
+    pub fn run(
+        planner: &Planner,
+        progress: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+    ) -> Result<Self, PlanError> {
+        let total = planner.spiral().point_count_hint();
+        let mut points = Vec::with_capacity(usize::try_from(total).unwrap_or(0));
+        for p in planner.points() {
+            points.push(p?);
+            let done = points.len() as u64;
+            if done.is_multiple_of(PROGRESS_EVERY) && progress(Progress { done, total }).is_break()
+            {
+                return Err(PlanError::Cancelled);
+            }
+        }
+        Self::of_points(planner.job(), &points)
+    }
+
+    /// The dynamics of the planned `points` of `job`.
+    pub fn of_points(job: &Job, points: &[PathPoint]) -> Result<Self, PlanError> {
+        let machine = &job.machine;
+        let rpm = machine.spindle_rpm;
+        let signal = PathSignal::from_points(points.iter().copied());
+        let spectrum = amplitude_spectrum(&signal, rpm, SPECTRUM_BINS);
+        let instantaneous_frequency = instantaneous_frequency(&signal, rpm, FREQUENCY_BANDS);
+        let (split_report, z_slide, w_fts) = match &job.strategy.split {
+            None => (None, None, None),
+            Some(spec) => {
+                if machine.fts.is_none() {
+                    return Err(crate::field::FieldError::new(
+                        "strategy.split",
+                        "set",
+                        "needs a fast tool servo: machine.fts",
+                    )
+                    .into());
+                }
+                let limits = split_limits(machine);
+                let s = split(&signal, spec, rpm, limits.as_ref())?;
+                let report = SplitReport {
+                    spec: spec.clone(),
+                    cutoff_hz: s.cutoff_hz,
+                    z_slide_pv_um: pv_um(&s.z_slide_mm),
+                    w_fts_pv_um: pv_um(&s.w_fts_mm),
+                    verdict: s.verdict,
+                };
+                (Some(report), Some(s.z_slide_mm), Some(s.w_fts_mm))
+            }
+        };
+        let samples: Vec<AxisSample> = points
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let z_slide = z_slide.as_ref().and_then(|z| z.get(i)).copied();
+                AxisSample {
+                    theta: p.theta,
+                    rho_mm: p.rho,
+                    x_mm: p.rho,
+                    z_mm: z_slide.unwrap_or(p.z),
+                    w_mm: z_slide.map_or(0.0, |z| p.z - z),
+                }
+            })
+            .collect();
+        let axes = check_axes(&samples, machine);
+        let channels = match (&z_slide, &w_fts) {
+            (Some(z), Some(w)) => Some(ChannelProfile::of(&signal.rho_mm, z, w)),
+            _ => None,
+        };
+        Ok(Self {
+            report: DynamicsReport {
+                spectrum,
+                instantaneous_frequency,
+                split: split_report,
+                axes,
+                channels,
+            },
+            z_slide_mm: z_slide,
+            w_fts_mm: w_fts,
+        })
+    }
+}

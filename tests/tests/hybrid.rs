@@ -1,0 +1,218 @@
+//! The hybrid FTS/SSS pipeline end to end (`Planner::run_with_dynamics`): a split program's
+//! Z + W equals the single-channel program's Z digit for digit with the same X and C, the
+//! servo's table repeats the program's C, X and W; a tilted flat is cut by the slide alone
+//! (W ≡ 0); machine limits alone check the axes and leave the program byte-identical; an
+//! infeasible split is reported (a warning naming the limit and the speed that would do, which
+//! re-planned at that speed is feasible); a split without a servo is refused.
+
+mod common;
+
+use common::example_job;
+use spiralcam::job::Job;
+use spiralcam::machine::presets;
+use spiralcam::plan::{Planner, Sinks};
+use spiralcam::report::Report;
+use spiralcam::split::{Limit, SplitSpec, Verdict};
+use std::ops::ControlFlow;
+
+/// Plans `job` with its dynamics; returns the report, the program and the servo's table.
+fn plan(job: &Job) -> (Report, String, String) {
+    let planner = Planner::new(job).unwrap_or_else(|e| panic!("{}: {e}", job.name));
+    let (mut nc, mut table) = (Vec::new(), Vec::new());
+    let sinks = Sinks {
+        nc: Some(&mut nc),
+        fts_table: Some(&mut table),
+        ..Default::default()
+    };
+    let report = planner
+        .run_with_dynamics(sinks, &mut |_| ControlFlow::Continue(()))
+        .unwrap_or_else(|e| panic!("{}: {e}", job.name));
+    let text = |b: Vec<u8>| String::from_utf8(b).unwrap();
+    (report, text(nc), text(table))
+}
+
+/// The example split job, coarsened for a debug build: 200 revolutions of 512 points
+/// (102 401 points) instead of 800 of 1024.
+fn grid_fts() -> Job {
+    let mut job = example_job("sinusoid-grid-fts.json");
+    job.strategy.feed_mm_per_rev = 0.02;
+    job.strategy.sampling = spiralcam::spiral::Sampling::ConstantAngle {
+        points_per_rev: 512,
+    };
+    job
+}
+
+/// The integer value of a word (e.g. `Z-0.001234` at 6 decimals → −1234) in a block.
+fn word(line: &str, letter: char) -> Option<i64> {
+    let w = line.split_whitespace().find(|w| w.starts_with(letter))?;
+    Some(w[1..].replace('.', "").parse().unwrap())
+}
+
+/// The feed blocks (`G1` with C) of a program.
+fn blocks(nc: &str) -> Vec<&str> {
+    nc.lines()
+        .filter(|l| l.starts_with("G1") && l.contains('C'))
+        .collect()
+}
+
+#[test]
+fn a_split_program_adds_up_to_the_single_channel_program() {
+    let job = grid_fts();
+    let (report, nc, table) = plan(&job);
+    let mut plain = job.clone();
+    plain.strategy.split = None;
+    let (_, single, empty) = plan(&plain);
+    assert_eq!(empty, "", "no table without a split");
+    let (split, single) = (blocks(&nc), blocks(&single));
+    assert_eq!(split.len() as u64, report.points - 1);
+    assert_eq!(split.len(), single.len());
+    let mut moving = 0;
+    for (s, p) in split.iter().zip(&single) {
+        let (z, w) = (word(s, 'Z').unwrap(), word(s, 'W').unwrap());
+        assert_eq!(z + w, word(p, 'Z').unwrap(), "{s} | {p}");
+        assert_eq!((word(s, 'X'), word(s, 'C')), (word(p, 'X'), word(p, 'C')));
+        moving += usize::from(w != 0);
+    }
+    assert!(moving > split.len() / 2, "the servo carries the grid");
+    // The table: a header, the plunge's point 0, then one row per block with its C, X and W.
+    let rows: Vec<&str> = table.lines().collect();
+    assert_eq!(rows[0], "c_deg,x_mm,w_mm");
+    assert_eq!(rows.len() as u64, report.points + 1);
+    for (row, s) in rows[2..].iter().zip(&split) {
+        let v: Vec<i64> = row
+            .split(',')
+            .map(|f| f.replace('.', "").parse().unwrap())
+            .collect();
+        assert_eq!(
+            v,
+            [
+                word(s, 'C').unwrap(),
+                word(s, 'X').unwrap(),
+                word(s, 'W').unwrap()
+            ]
+        );
+    }
+    let dynamics = report.dynamics.expect("dynamics in the report");
+    let split = dynamics.split.expect("the split in the report");
+    assert!(matches!(
+        split.verdict,
+        Verdict::Feasible {
+            slide_alone: false,
+            ..
+        }
+    ));
+    // The grid (2 µm amplitude, 4 µm PV) goes to the servo.
+    assert!(
+        (split.w_fts_pv_um - 4.0).abs() < 0.05,
+        "{}",
+        split.w_fts_pv_um
+    );
+    assert!(dynamics.axes.within_limits);
+    assert!(report.warnings.is_empty(), "{:?}", report.warnings);
+    let profile = dynamics.channels.expect("channels for the page");
+    assert!(profile.rho_mm.len() <= spiralcam::dynamics::PROFILE_BUCKETS);
+    let swing = profile.w_max_um.iter().fold(0.0f64, |a, &b| a.max(b));
+    assert!((swing - 2.0).abs() < 0.05, "{swing}");
+}
+
+#[test]
+fn a_tilted_flat_is_cut_by_the_slide_alone() {
+    let mut job = example_job("tilted-flat.json");
+    job.machine = presets()[2].machine(job.machine.spindle_rpm);
+    job.strategy.split = Some(SplitSpec::Auto);
+    job.output = Default::default();
+    let (report, nc, _) = plan(&job);
+    let blocks = blocks(&nc);
+    assert!(!blocks.is_empty());
+    assert!(blocks.iter().all(|b| word(b, 'W') == Some(0)), "W ≡ 0");
+    let split = report.dynamics.unwrap().split.unwrap();
+    assert!(matches!(
+        split.verdict,
+        Verdict::Feasible {
+            slide_alone: true,
+            ..
+        }
+    ));
+    assert_eq!(split.w_fts_pv_um, 0.0);
+}
+
+#[test]
+fn machine_limits_alone_check_the_axes_and_leave_the_program_unchanged() {
+    let plain = example_job("lens-array-paper004.json");
+    let mut limited = plain.clone();
+    limited.machine = presets()[0].machine(plain.machine.spindle_rpm);
+    let (with, nc_with, _) = plan(&limited);
+    let (without, nc_without, _) = plan(&plain);
+    assert_eq!(nc_with, nc_without);
+    assert!(without.dynamics.is_none() && !without.to_json().contains("dynamics"));
+    let axes = with.dynamics.expect("axis checks").axes;
+    assert_eq!(axes.points, with.points);
+    assert!((axes.cycle_time_s - with.cycle_time_s).abs() <= 1e-12 * with.cycle_time_s);
+}
+
+/// A 1 µm stroke forces the cutoff up into the grid's band, above the slide's 20 Hz: the split
+/// is infeasible on the slide's bandwidth, the warning says so with the speed that would do,
+/// and re-planned at that speed (rounded down by the splitter) the split is feasible.
+#[test]
+fn an_infeasible_split_is_reported_with_the_speed_that_would_do() {
+    let mut job = grid_fts();
+    if let Some(fts) = job.machine.fts.as_mut() {
+        fts.stroke_um = 1.0;
+    }
+    let (report, _, _) = plan(&job);
+    let split = report.dynamics.unwrap().split.unwrap();
+    let Verdict::Infeasible {
+        conflicts,
+        feasible_spindle_rpm: Some(rpm),
+        ..
+    } = split.verdict
+    else {
+        panic!("{:?}", split.verdict)
+    };
+    let cutoff = split.cutoff_hz.unwrap();
+    assert!(cutoff > 20.0, "{cutoff}");
+    assert!(conflicts.iter().any(|c| c.limit == Limit::SlideBandwidthHz));
+    // The splitter offers the larger of the speeds for this cutoff (at most 300·20/cutoff, the
+    // slide's bandwidth) and for the slide alone (here the grid's highest frequency, ~170 Hz,
+    // against 20 Hz): so at least the first, rounded down to 3 digits, and below 300.
+    assert!(
+        rpm >= 0.99 * 300.0 * 20.0 / cutoff && rpm < 300.0,
+        "{rpm} at cutoff {cutoff}"
+    );
+    let warning = report
+        .warnings
+        .iter()
+        .find(|w| w.starts_with("the split exceeds the machine"))
+        .expect("a warning");
+    assert!(
+        warning.contains("machine.z_slide.bandwidth_hz"),
+        "{warning}"
+    );
+    assert!(
+        warning.contains(&format!("feasible at {rpm} rpm")),
+        "{warning}"
+    );
+    job.machine.spindle_rpm = rpm;
+    let (again, _, _) = plan(&job);
+    let split = again.dynamics.unwrap().split.unwrap();
+    assert!(
+        matches!(split.verdict, Verdict::Feasible { .. }),
+        "{:?}",
+        split.verdict
+    );
+}
+
+#[test]
+fn a_split_without_a_servo_is_refused() {
+    let mut job = grid_fts();
+    job.machine.fts = None;
+    let planner = Planner::new(&job).unwrap();
+    let e = planner
+        .run_with_dynamics(Sinks::default(), &mut |_| ControlFlow::Continue(()))
+        .unwrap_err()
+        .to_string();
+    assert_eq!(
+        e,
+        "strategy.split = set: needs a fast tool servo: machine.fts"
+    );
+}

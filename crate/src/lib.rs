@@ -7,6 +7,9 @@
 //! cutting into it (paper 003 eqs 17–24, solved as a maximum), [`reach`] reports where the nose
 //! cannot reach the surface, and the [`nc`] writers turn the points into NC programs and CSV.
 //! [`plan`] runs the whole chain as a stream, so memory does not grow with the point count.
+//! With machine limits or a split, [`dynamics`] first analyses the planned path in memory
+//! ([`spectrum`], [`split`], [`axis_checks`]; paper 000's FFT/Hilbert splitting) and the
+//! program is written with the slide's Z and the fast tool servo's W.
 
 pub mod analysis;
 pub mod axis_checks;

@@ -13,6 +13,7 @@ use crate::nc::{CsvWriter, FtsTableWriter, Header, NcError, NcWriter};
 use crate::reach::{self, Reach};
 use crate::report::{Report, Stats};
 use crate::spiral::{Sampling, Spiral, SpiralPoint};
+use crate::split::SplitSpec;
 use crate::surface::{Surface, UndefinedError};
 use std::io::Write;
 use std::ops::ControlFlow;
@@ -328,7 +329,7 @@ impl Planner {
                 "two-way compensation (contact on the spiral, nose centre on the surface normal, X and C of the centre)"
             }
         };
-        Header {
+        let mut header = Header {
             lines: vec![
                 format!(
                     "spiralcam {} - {}",
@@ -369,7 +370,21 @@ impl Planner {
                 ),
             ],
             spindle_rpm: j.machine.spindle_rpm,
+        };
+        if let Some(split) = &j.strategy.split {
+            let how = match split {
+                SplitSpec::Symmetric => "the rotationally symmetric part on Z".to_string(),
+                SplitSpec::LowPass { cutoff_hz } => {
+                    format!("zero-phase low-pass at {cutoff_hz} Hz on Z")
+                }
+                SplitSpec::Auto => "automatic cutoff (see the report)".to_string(),
+            };
+            header.lines.push(format!(
+                "split between the Z slide and the fast tool servo {}: {how}, the rest on {}; Z + {} = the tool tip",
+                conv.fts_word as char, conv.fts_word as char, conv.fts_word as char
+            ));
         }
+        header
     }
 
     /// Zones where the nose cannot reach the surface (see [`crate::reach`]).

@@ -3,7 +3,8 @@
 //! servo's table repeats the program's C, X and W; a tilted flat is cut by the slide alone
 //! (W ≡ 0); machine limits alone check the axes and leave the program byte-identical; an
 //! infeasible split is reported (a warning naming the limit and the speed that would do, which
-//! re-planned at that speed is feasible); a split without a servo is refused.
+//! re-planned at that speed is feasible); a split without a servo is refused; and paper 000's
+//! two-frequency case on the compound eye, each frequency put on its axis.
 
 mod common;
 
@@ -215,4 +216,56 @@ fn a_split_without_a_servo_is_refused() {
         e,
         "strategy.split = set: needs a fast tool servo: machine.fts"
     );
+}
+
+/// The paper 000 compound eye (7 elements of 17 lenslets; ours, its dimensions did not survive)
+/// at 60.98 rpm, where its six-fold element ring is paper 000's 6.098 Hz: the spectrum finds
+/// the ring (6 cycles/rev) and the lenslets (42 cycles/rev, seven lenslets crossed per element;
+/// the paper's 47.03 Hz is 7.71 per element), and a low-pass at 20 Hz puts the ring on the
+/// slide and the lenslets on the servo: each channel keeps its own peak within the filter's
+/// response (H = 1/(1 + (f/20)⁸): 0.99998 at 6.1 Hz, 0.0024 at 42.7 Hz) and loses the other's.
+#[test]
+fn the_compound_eye_splits_its_two_frequencies_onto_the_right_axes() {
+    use spiralcam::dynamics::Dynamics;
+    use spiralcam::path_signal::PathSignal;
+    use spiralcam::spectrum::amplitude_spectrum;
+    // The whole spectrum, undecimated, of one channel along the path.
+    let channel_of = |points: &[spiralcam::plan::PathPoint], v: &Vec<f64>| {
+        let mut s = PathSignal::from_points(points.iter().copied());
+        s.z_mm.clone_from(v);
+        amplitude_spectrum(&s, 60.98, 1 << 20)
+    };
+    let mut job = example_job("compound-eye-paper000.json");
+    job.machine = presets()[1].machine(60.98);
+    job.strategy.feed_mm_per_rev = 0.05;
+    job.strategy.sampling = spiralcam::spiral::Sampling::ConstantAngle {
+        points_per_rev: 512,
+    };
+    job.strategy.split = Some(SplitSpec::LowPass { cutoff_hz: 20.0 });
+    let planner = Planner::new(&job).unwrap();
+    let points: Vec<_> = planner.points().map(|p| p.unwrap()).collect();
+    let d = Dynamics::of_points(&job, &points).unwrap();
+    let hz = |cpr: f64| cpr * 60.98 / 60.0;
+    // The largest bin within 0.3 Hz (the same bins in every channel: same scalloping).
+    let peak_near = |spectrum: &spiralcam::spectrum::Spectrum, f: f64| {
+        spectrum
+            .freq_hz
+            .iter()
+            .zip(&spectrum.amplitude_um)
+            .filter(|(g, _)| (*g - f).abs() < 0.3)
+            .map(|(_, a)| *a)
+            .fold(0.0, f64::max)
+    };
+    let whole = &channel_of(&points, &points.iter().map(|p| p.z).collect());
+    let (ring, lenslets) = (peak_near(whole, hz(6.0)), peak_near(whole, hz(42.0)));
+    assert!(
+        ring > 1.0 && lenslets > 0.1,
+        "ring {ring} µm, lenslets {lenslets} µm"
+    );
+    let z = channel_of(&points, d.z_slide_mm.as_ref().unwrap());
+    let w = channel_of(&points, d.w_fts_mm.as_ref().unwrap());
+    assert!((peak_near(&z, hz(6.0)) - ring).abs() < 0.01 * ring);
+    assert!(peak_near(&z, hz(42.0)) < 0.01 * lenslets);
+    assert!((peak_near(&w, hz(42.0)) - lenslets).abs() < 0.01 * lenslets);
+    assert!(peak_near(&w, hz(6.0)) < 0.01 * ring);
 }

@@ -127,10 +127,10 @@ pub fn wanted(job: &Job) -> bool {
 pub fn split_limits(m: &MachineSpec) -> Option<SplitLimits> {
     let (z, fts) = (m.z_slide.as_ref()?, m.fts.as_ref()?);
     Some(SplitLimits {
-        fts_stroke_mm: fts.stroke_um / 1000.0,
+        fts_stroke_mm: fts.stroke_mm(),
         fts_bandwidth_hz: fts.bandwidth_hz,
-        fts_acceleration_mm_per_s2: fts.acceleration_m_per_s2 * 1000.0,
-        slide_velocity_mm_per_s: z.velocity_mm_per_min / 60.0,
+        fts_acceleration_mm_per_s2: fts.acceleration_mm_per_s2(),
+        slide_velocity_mm_per_s: z.velocity_mm_per_s(),
         slide_acceleration_mm_per_s2: z.acceleration_mm_per_s2,
         slide_bandwidth_hz: z.bandwidth_hz,
     })

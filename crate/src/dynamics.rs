@@ -219,14 +219,6 @@ impl Dynamics {
         let (split_report, z_slide, w_fts) = match &job.strategy.split {
             None => (None, None, None),
             Some(spec) => {
-                if machine.fts.is_none() {
-                    return Err(crate::field::FieldError::new(
-                        "strategy.split",
-                        "set",
-                        "needs a fast tool servo: machine.fts",
-                    )
-                    .into());
-                }
                 let limits = split_limits(machine);
                 let s = split(&signal, spec, rpm, limits.as_ref())?;
                 let report = SplitReport {

@@ -9,6 +9,7 @@ use crate::field::{FieldError, finite, positive};
 pub use crate::machine::MachineSpec;
 use crate::nc::OutputSpec;
 use crate::spiral::{Direction, Sampling};
+use crate::split::SplitSpec;
 use crate::surface::{PartDisc, Reframed, Surface, SurfaceSpec};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -74,7 +75,7 @@ pub struct StrategySpec {
     /// The split of the path between the Z slide and a fast tool servo
     /// ([`crate::split::SplitSpec`]); absent: the slide cuts alone.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub split: Option<crate::split::SplitSpec>,
+    pub split: Option<SplitSpec>,
 }
 
 /// A job that cannot be read.
@@ -192,6 +193,35 @@ impl Job {
         Ok(())
     }
 
+    /// A split needs a servo, and the automatic one the Z slide's limits too; a cutoff is a
+    /// positive number (its upper bound, the path's Nyquist frequency, is checked on the path).
+    fn validate_split(&self) -> Result<(), FieldError> {
+        let Some(split) = &self.strategy.split else {
+            return Ok(());
+        };
+        if self.machine.fts.is_none() {
+            return Err(FieldError::new(
+                "strategy.split",
+                "set",
+                "needs a fast tool servo: machine.fts",
+            ));
+        }
+        match split {
+            SplitSpec::LowPass { cutoff_hz } => {
+                positive("strategy.split.cutoff_hz", *cutoff_hz)?;
+            }
+            SplitSpec::Auto if self.machine.z_slide.is_none() => {
+                return Err(FieldError::new(
+                    "strategy.split.type",
+                    "auto",
+                    "needs the Z slide's limits: machine.z_slide",
+                ));
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+
     /// Checks the values that no single module owns.
     pub fn validate(&self) -> Result<(), JobError> {
         if self.name.is_empty()
@@ -213,6 +243,7 @@ impl Job {
             finite("part.normal_axis_at_mm[1]", y)?;
         }
         self.machine.validate().map_err(|e| e.within("machine"))?;
+        self.validate_split()?;
         if let Some(r) = self.strategy.outer_radius_mm {
             positive("strategy.outer_radius_mm", r)?;
             if r > self.part_radius_mm() {

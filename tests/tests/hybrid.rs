@@ -3,7 +3,8 @@
 //! servo's table repeats the program's C, X and W; a tilted flat is cut by the slide alone
 //! (W ≡ 0); machine limits alone check the axes and leave the program byte-identical; an
 //! infeasible split is reported (a warning naming the limit and the speed that would do, which
-//! re-planned at that speed is feasible); a split without a servo is refused; and paper 000's
+//! re-planned at that speed is feasible); a split the machine cannot make is refused naming the
+//! field; and paper 000's
 //! two-frequency case on the compound eye, each frequency put on its axis.
 
 mod common;
@@ -204,17 +205,38 @@ fn an_infeasible_split_is_reported_with_the_speed_that_would_do() {
 }
 
 #[test]
-fn a_split_without_a_servo_is_refused() {
+fn a_split_the_machine_cannot_make_is_refused_naming_the_field() {
+    type Change = fn(&mut Job);
+    let cases: [(Change, &str); 3] = [
+        (
+            |j| j.machine.fts = None,
+            "strategy.split = set: needs a fast tool servo: machine.fts",
+        ),
+        (
+            |j| j.machine.z_slide = None,
+            "strategy.split.type = auto: needs the Z slide's limits: machine.z_slide",
+        ),
+        (
+            |j| j.strategy.split = Some(SplitSpec::LowPass { cutoff_hz: -2.0 }),
+            "strategy.split.cutoff_hz = -2: must be a finite number > 0",
+        ),
+    ];
+    for (change, message) in cases {
+        let mut job = grid_fts();
+        change(&mut job);
+        assert_eq!(Planner::new(&job).unwrap_err().to_string(), message);
+    }
+    // Above the path's Nyquist frequency (256 cycles/rev at 300 rpm: 1280 Hz) on the path.
     let mut job = grid_fts();
-    job.machine.fts = None;
-    let planner = Planner::new(&job).unwrap();
-    let e = planner
+    job.strategy.split = Some(SplitSpec::LowPass { cutoff_hz: 2000.0 });
+    let e = Planner::new(&job)
+        .unwrap()
         .run_with_dynamics(Sinks::default(), &mut |_| ControlFlow::Continue(()))
         .unwrap_err()
         .to_string();
-    assert_eq!(
-        e,
-        "strategy.split = set: needs a fast tool servo: machine.fts"
+    assert!(
+        e.starts_with("strategy.split.cutoff_hz = 2000: must be a finite number in (0, 1280] Hz"),
+        "{e}"
     );
 }
 

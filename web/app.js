@@ -1,12 +1,13 @@
-// The page: the job form, planning in a Web Worker (progress, cancel), the 3-D view, the report
-// and the downloads. Planning never runs on this thread, so the page stays responsive; a new
+// The page: the job form, planning in a Web Worker (progress, cancel), the 3-D view, the report,
+// the machine dynamics (split verdict, axis checks, 2-D plots) and the downloads. Planning never runs on this thread, so the page stays responsive; a new
 // edit or Cancel terminates the worker and starts a fresh one. The page's state is mirrored on
 // `document.body.dataset.state` ("loading", "planning", "done", "analysing", "analysed", "error",
 // "cancelled") and `window.spiralcam` (plans started and finished, the report, the accuracy
 // analysis, the backend) for the browser tests.
 
-import init, { Viewer, default_job, colormap_css, colormap_stops, version } from '../pkg/spiralcam_web.js';
+import init, { Viewer, default_job, colormap_css, colormap_stops, machine_presets, version } from '../pkg/spiralcam_web.js';
 import { JobForm } from './form.js';
+import { drawPlot, prepare } from './plots.js';
 
 const $ = (id) => document.getElementById(id);
 const status = (window.spiralcam = { state: 'loading', backend: null, report: null, analysis: null, started: 0, plans: 0, error: null });
@@ -50,7 +51,7 @@ class PlannerWorker {
     reject(err);
   }
 
-  /** `kind`: "plan", "nc" or "csv". */
+  /** `kind`: "plan", "analyse", "nc", "csv" or "fts". */
   run(kind, job) {
     this.cancel();
     const id = this.nextId++;
@@ -74,6 +75,14 @@ class PlannerWorker {
 }
 
 const fmt = (v, digits = 3) => (Number.isFinite(v) ? v.toLocaleString('en-US', { maximumFractionDigits: digits }) : '–');
+
+/** `v` to four significant digits (tiny figures of a path that hardly moves an axis stay
+ * readable). */
+function sig(v) {
+  if (!Number.isFinite(v)) return '–';
+  if (v !== 0 && Math.abs(v) < 1e-3) return v.toExponential(2);
+  return Math.abs(v) >= 1000 ? fmt(v, 0) : v.toLocaleString('en-US', { maximumSignificantDigits: 4 });
+}
 
 function duration(s) {
   const m = Math.floor(s / 60);
@@ -139,6 +148,155 @@ function showReport(report, job) {
     tr.append(...cells.map((c) => Object.assign(document.createElement('td'), { textContent: c })));
     return tr;
   }));
+}
+
+/** The splitter's limits (`crate/src/split.rs` `Limit`): name, and the value in the unit of
+ * its job field. */
+const SPLIT_LIMITS = {
+  fts_stroke_mm: ['FTS stroke (W PV)', (v) => `${sig(v * 1000)} µm`],
+  fts_bandwidth_hz: ['FTS bandwidth', (v) => `${sig(v)} Hz`],
+  fts_acceleration_mm_per_s2: ['FTS acceleration', (v) => `${sig(v / 1000)} m/s²`],
+  slide_velocity_mm_per_s: ['Z slide velocity', (v) => `${sig(v * 60)} mm/min`],
+  slide_acceleration_mm_per_s2: ['Z slide acceleration', (v) => `${sig(v)} mm/s²`],
+  slide_bandwidth_hz: ['Z slide bandwidth', (v) => `${sig(v)} Hz`],
+};
+
+const splitLimit = (c) => SPLIT_LIMITS[c.limit] || [c.limit.replaceAll('_', ' '), sig];
+
+/** The split's verdict in words. */
+function verdictText(v) {
+  if (v.status === 'unchecked') return 'not checked: the machine needs a Z slide and a servo for the split\'s checks';
+  if (v.status === 'feasible') {
+    return v.slide_alone ? 'feasible: the slide cuts alone (W = 0)' : 'feasible: both channels within the machine\'s limits';
+  }
+  const what = (v.conflicts || []).map((c) => {
+    const [name, unit] = splitLimit(c);
+    return `${name} ${unit(c.value)} > ${unit(c.allowed)}${c.at_rho_mm == null ? '' : ` at ρ ${fmt(c.at_rho_mm, 3)} mm`}`;
+  });
+  const speed = v.feasible_spindle_rpm == null
+    ? 'no spindle speed makes it feasible (the stroke)'
+    : `feasible at ${fmt(v.feasible_spindle_rpm, 1)} rpm or less`;
+  return `infeasible: ${what.join('; ')}; ${speed}`;
+}
+
+/** One axis's largest velocity and acceleration against its limits, in the units of the job's
+ * fields: mm/min and mm/s² for a slide, m/s² for the servo (whose velocity has no limit). */
+function axisText(a, servo = false) {
+  const over = (n) => (n ? ` (${fmt(n, 0)} points over)` : '');
+  const of = (limit, scale) => (limit == null ? '' : ` of ${sig(limit * scale)}`);
+  const v = servo
+    ? `${sig(a.max_velocity_mm_per_s)} mm/s`
+    : `${sig(a.max_velocity_mm_per_min)}${of(a.velocity_limit_mm_per_s, 60)} mm/min`;
+  const acc = servo
+    ? `${sig(a.max_acceleration_mm_per_s2 / 1000)}${of(a.acceleration_limit_mm_per_s2, 1e-3)} m/s²`
+    : `${sig(a.max_acceleration_mm_per_s2)}${of(a.acceleration_limit_mm_per_s2, 1)} mm/s²`;
+  return `velocity ${v}${over(a.velocity_violation_count)}, acceleration ${acc}${over(a.acceleration_violation_count)}`;
+}
+
+const at = (p) => (p ? ` at ρ ${fmt(p.rho_mm, 3)} mm, θ ${fmt(p.theta_deg, 1)}°` : '');
+
+/** The dynamics panel: the split's verdict and checks, the axis checks and three plots. */
+function showDynamics(d, job) {
+  const panel = $('dynamics');
+  panel.hidden = !d;
+  if (!d) return;
+  const rpm = d.axes.spindle_rpm;
+  const split = d.split;
+  const rows = [];
+  if (split) {
+    const how = {
+      symmetric: 'symmetric part on the slide (paper 002)',
+      low_pass: 'low-pass',
+      auto: 'automatic (lowest cutoff the stroke allows)',
+    }[split.spec.type] || split.spec.type;
+    rows.push(
+      ['Split', how],
+      ['Verdict', verdictText(split.verdict)],
+      ['Cutoff', split.cutoff_hz == null ? '–' : `${fmt(split.cutoff_hz, 3)} Hz (${fmt((split.cutoff_hz * 60) / rpm, 3)} cycles/rev)`],
+      ['Z slide PV', `${fmt(split.z_slide_pv_um, 4)} µm`],
+      ['W servo PV', `${fmt(split.w_fts_pv_um, 4)} µm`],
+    );
+  } else {
+    rows.push(['Split', 'none: Z cuts alone']);
+  }
+  const a = d.axes;
+  rows.push(['X axis', axisText(a.x)], ['Z axis', axisText(a.z)]);
+  if (split) {
+    rows.push(['W axis', `${axisText(a.w, true)}, stroke ${sig(a.fts_stroke.used_um)}${a.fts_stroke.limit_um == null ? '' : ` of ${sig(a.fts_stroke.limit_um)}`} µm`]);
+  }
+  const br = a.block_rate;
+  rows.push(
+    ['Block rate', `${fmt(br.required_hz, 1)} Hz needed${at(br.at)}${br.limit_hz == null ? ' (not checked)' : `; limit ${fmt(br.limit_hz, 1)} Hz${br.violation_count ? ` (${fmt(br.violation_count, 0)} blocks over)` : ''}`}`],
+    ['Cycle time', `${duration(a.cycle_time_s)} at ${fmt(rpm)} rpm`],
+    ['Highest spindle speed', a.max_spindle ? `${fmt(a.max_spindle.max_spindle_rpm, 1)} rpm, bound by ${a.max_spindle.binding_limit}${at(a.max_spindle.at)}` : 'no limit given binds it'],
+    ['Within limits', a.within_limits ? 'yes' : 'no (see the warnings above)'],
+  );
+  $('dynamics-table').replaceChildren(...keyRows(rows));
+  const checks = split?.verdict.checks || [];
+  $('split-checks').hidden = !checks.length;
+  $('split-checks').querySelector('tbody').replaceChildren(...checks.map((c) => {
+    const [name, unit] = splitLimit(c);
+    const tr = document.createElement('tr');
+    tr.dataset.limit = c.limit;
+    if (!(c.value <= c.allowed)) tr.className = 'fail';
+    const cells = [name, unit(c.value), unit(c.allowed), c.at_rho_mm == null ? '–' : `${fmt(c.at_rho_mm, 3)} mm`];
+    tr.append(...cells.map((t) => Object.assign(document.createElement('td'), { textContent: t })));
+    return tr;
+  }));
+
+  const m = job.machine;
+  const slideHz = m.z_slide?.bandwidth_hz;
+  const ftsHz = m.fts?.bandwidth_hz;
+  // (a) The amplitude spectrum, peaks marked with their frequency.
+  const s = d.spectrum;
+  const sp = prepare($('plot-spectrum'));
+  const spectrumSeries = [
+    { type: 'line', x: s.freq_hz, y: s.amplitude_um, colour: '#1f6feb', label: 'amplitude', width: 1 },
+    { type: 'markers', x: s.peaks.map((p) => p.freq_hz), y: s.peaks.map((p) => p.amplitude_um), labels: s.peaks.map((p) => `${fmt(p.freq_hz, 1)} Hz`), colour: '#c62828' },
+  ];
+  if (split?.cutoff_hz != null) spectrumSeries.push({ type: 'vline', x: split.cutoff_hz, colour: '#2e7d32', dash: [4, 3], label: `cutoff ${fmt(split.cutoff_hz, 2)} Hz` });
+  // Up to the highest frequency the log scale shows (1e-5 of the largest amplitude).
+  const top = Math.max(...s.amplitude_um.filter(Number.isFinite));
+  let last = s.freq_hz.length - 1;
+  while (last > 0 && !(s.amplitude_um[last] >= top * 1e-5)) last--;
+  const fMax = Math.max(s.freq_hz[last] * 1.1, split?.cutoff_hz * 1.1 || 0);
+  drawPlot(sp.ctx, { x: 0, y: 0, w: sp.width, h: sp.height }, {
+    x: { label: 'frequency', unit: 'Hz', min: 0, max: Number.isFinite(fMax) && fMax > 0 ? Math.min(fMax, s.freq_hz[s.freq_hz.length - 1]) : undefined },
+    y: { label: 'amplitude', unit: 'µm', log: true, floorRatio: 1e5, headroom: 3 },
+    series: spectrumSeries,
+  });
+  // (b) Instantaneous frequency against radius, with the bandwidths.
+  const bands = d.instantaneous_frequency;
+  const mid = bands.map((b) => (b.rho_outer_mm + b.rho_inner_mm) / 2);
+  const fp = prepare($('plot-frequency'));
+  const frequencySeries = [
+    { type: 'line', x: mid, y: bands.map((b) => b.p95_hz), colour: '#9a5b00', label: '95th percentile', dash: [5, 3] },
+    { type: 'line', x: mid, y: bands.map((b) => b.median_hz), colour: '#1f6feb', label: 'median' },
+  ];
+  if (slideHz) frequencySeries.push({ type: 'hline', y: slideHz, colour: '#2e7d32', label: `Z slide bandwidth ${fmt(slideHz, 1)} Hz`, dash: [2, 2] });
+  if (ftsHz) frequencySeries.push({ type: 'hline', y: ftsHz, colour: '#c62828', label: `FTS bandwidth ${fmt(ftsHz, 1)} Hz`, dash: [2, 2] });
+  drawPlot(fp.ctx, { x: 0, y: 0, w: fp.width, h: fp.height }, {
+    x: { label: 'radius ρ', unit: 'mm', min: 0 },
+    y: { label: 'frequency', unit: 'Hz', min: 0 },
+    series: frequencySeries,
+  });
+  // (c) Both channels along the path: Z over W, envelopes against radius.
+  const ch = d.channels;
+  $('channels-figure').hidden = !ch;
+  if (ch) {
+    const cp = prepare($('plot-channels'), 1.05);
+    const half = cp.height / 2;
+    drawPlot(cp.ctx, { x: 0, y: 0, w: cp.width, h: half }, {
+      x: { label: 'radius ρ', unit: 'mm', min: 0 },
+      y: { label: 'Z slide', unit: 'mm' },
+      series: [{ type: 'band', x: ch.rho_mm, lo: ch.z_min_mm, hi: ch.z_max_mm, colour: '#1f6feb', label: 'Z (slide)' }],
+    });
+    drawPlot(cp.ctx, { x: 0, y: half, w: cp.width, h: half }, {
+      x: { label: 'radius ρ', unit: 'mm', min: 0 },
+      y: { label: 'W servo', unit: 'µm' },
+      series: [{ type: 'band', x: ch.rho_mm, lo: ch.w_min_um, hi: ch.w_max_um, colour: '#c62828', label: `${job.output.fts_word || 'W'} (servo)` }],
+    });
+  }
 }
 
 /** A colour from the shared scale at t in [0, 1]: [r, g, b] in 0…255. */
@@ -349,12 +507,12 @@ async function main() {
   const worker = new PlannerWorker((kind, done, total) => {
     progress.max = total;
     progress.value = done;
-    const what = { plan: 'planning', nc: 'writing NC', csv: 'writing CSV', analyse: 'analysing' }[kind];
+    const what = { plan: 'planning', nc: 'writing NC', csv: 'writing CSV', fts: 'writing the FTS table', analyse: 'analysing' }[kind];
     progressText.textContent = `${what}: ${Math.round((100 * done) / Math.max(total, 1))} % (${fmt(done, 0)} / ${fmt(total, 0)} points)`;
   });
 
   let planned = null;
-  const form = new JobForm($('job-form'), () => schedule());
+  const form = new JobForm($('job-form'), () => schedule(), JSON.parse(machine_presets()));
   const showFailure = (e) => {
     status.error = e.message;
     setState('error');
@@ -381,6 +539,8 @@ async function main() {
       status.report = m.report;
       status.plans += 1;
       showReport(m.report, job);
+      $('download-fts').hidden = !m.report.dynamics?.split;
+      showDynamics(m.report.dynamics, job);
       showMaps(m.maps, stops);
       showAnalysis(null, stops);
       $('plan-time').textContent = `planned in ${fmt((performance.now() - started) / 1000, 2)} s`;
@@ -412,7 +572,7 @@ async function main() {
     busy(true);
     try {
       const m = await worker.run(kind, planned.job);
-      const name = kind === 'nc' ? planned.names.nc : planned.names.csv;
+      const name = { nc: planned.names.nc, csv: planned.names.csv, fts: `${planned.job.name}-fts.csv` }[kind];
       download(name, m.bytes, kind === 'nc' ? 'text/plain' : 'text/csv');
     } catch (e) {
       if (!e.cancelled) showFailure(e);
@@ -444,6 +604,7 @@ async function main() {
   $('analyse').addEventListener('click', analyse);
   $('download-nc').addEventListener('click', () => save('nc'));
   $('download-csv').addEventListener('click', () => save('csv'));
+  $('download-fts').addEventListener('click', () => save('fts'));
   $('download-job').addEventListener('click', () => {
     const job = form.value();
     download(`${job.name}.json`, `${JSON.stringify(job, null, 2)}\n`, 'application/json');

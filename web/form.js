@@ -251,7 +251,17 @@ const SECTIONS = [
     { path: 'tool.rake_deg', label: 'Rake angle', unit: '°', hint: '[−80, 80], blank: 0', optional: true },
     { path: 'tool.clearance_deg', label: 'Front clearance', unit: '°', hint: '[0, 80], blank: 10', optional: true },
   ]],
-  ['Machine', [{ path: 'machine.spindle_rpm', label: 'Spindle speed', unit: 'rpm', hint: '> 0' }]],
+  ['Machine', [
+    { path: 'machine.spindle_rpm', label: 'Spindle speed', unit: 'rpm', hint: '> 0' },
+    { role: 'machine-preset', label: 'Machine' },
+    { path: 'machine.block_rate_hz', label: 'Block rate', unit: 'Hz', hint: 'NC blocks per second the control runs; blank: not checked', optional: true },
+    ...slideFields('x_slide', 'X slide'),
+    ...slideFields('z_slide', 'Z slide'),
+    { path: 'machine.fts', label: 'Fast tool servo', role: 'fts', options: ['', 'set'], optionLabels: ['none', 'fitted (W axis)'] },
+    { path: 'machine.fts.stroke_um', label: 'FTS stroke (PV)', unit: 'µm', hint: '> 0: full stroke, peak to valley', whenField: 'machine.fts', when: 'set' },
+    { path: 'machine.fts.bandwidth_hz', label: 'FTS bandwidth', unit: 'Hz', hint: '> 0', whenField: 'machine.fts', when: 'set' },
+    { path: 'machine.fts.acceleration_m_per_s2', label: 'FTS acceleration', unit: 'm/s²', hint: '> 0', whenField: 'machine.fts', when: 'set' },
+  ]],
   ['Strategy', [
     { path: 'strategy.feed_mm_per_rev', label: 'Feed f', unit: 'mm/rev', hint: '> 0' },
     { path: 'strategy.sampling.type', label: 'Sampling', options: ['constant_angle', 'constant_arc', 'hcaa', 'adaptive', 'space_spiral'], optionLabels: ['constant angle', 'constant arc', 'HCAA (paper 000)', 'adaptive per revolution', 'space spiral (paper 001)'] },
@@ -264,6 +274,12 @@ const SECTIONS = [
     { path: 'strategy.compensation', label: 'Nose compensation', options: ['one_way', 'two_way'], optionLabels: ['one-way (Z only; X on the spiral)', 'two-way (along the normal; X moves)'] },
     { path: 'strategy.start_angle_deg', label: 'Start angle', unit: '°' },
     { path: 'strategy.outer_radius_mm', label: 'Outer radius', unit: 'mm', hint: 'blank: part radius', optional: true },
+    {
+      path: 'strategy.split.type', label: 'Split Z / W', role: 'split', options: ['', 'symmetric', 'low_pass', 'auto'],
+      optionLabels: ['none (Z alone)', 'symmetric part on Z (paper 002)', 'low-pass at a cutoff (paper 000)', 'automatic (lowest cutoff the stroke allows)'],
+      hint: 'the slide (Z) and the fast tool servo (W) share the path: Z + W = z; needs a fast tool servo',
+    },
+    { path: 'strategy.split.cutoff_hz', label: 'Cutoff', unit: 'Hz', hint: '> 0: slower to the slide, faster to the servo', whenField: 'strategy.split.type', when: 'low_pass' },
   ]],
   ['NC output', [
     { path: 'output.dialect', label: 'Dialect', options: ['iso', 'moore', 'precitech'] },
@@ -277,8 +293,39 @@ const SECTIONS = [
     { path: 'output.feed_mm_per_min', label: 'Feed (G94)', unit: 'mm/min', optional: true },
     { path: 'output.plunge_feed_mm_per_min', label: 'Plunge feed', unit: 'mm/min' },
     { path: 'output.clearance_mm', label: 'Clearance', unit: 'mm', hint: '≥ 0' },
+    {
+      path: 'output.fts_word', label: 'Servo word', options: ['', 'W', 'U', 'V', 'A', 'B', 'Y'], optionLabels: ['W (default)', 'W', 'U', 'V', 'A', 'B', 'Y'],
+      optional: true, hint: 'the fast tool servo\'s word in split programs', whenField: 'strategy.split.type', when: 'symmetric low_pass auto',
+    },
   ]],
 ];
+
+/** The three limits of a slide (`machine.<key>`): all three blank = not checked. */
+function slideFields(key, name) {
+  const group = `machine.${key}`;
+  return [
+    { path: `${group}.velocity_mm_per_min`, label: `${name} velocity`, unit: 'mm/min', hint: '> 0; all three blank: not checked', group },
+    { path: `${group}.acceleration_mm_per_s2`, label: `${name} acceleration`, unit: 'mm/s²', hint: '> 0; all three blank: not checked', group },
+    { path: `${group}.bandwidth_hz`, label: `${name} bandwidth`, unit: 'Hz', hint: '> 0; all three blank: not checked', group },
+  ];
+}
+
+/** What a machine preset sets in `job.machine`. */
+const MACHINE_LIMITS = ['block_rate_hz', 'x_slide', 'z_slide', 'fts'];
+
+/** Whether the limits of `machine` are those of `preset` (`null` preset: no limits at all). */
+function machineIs(machine, preset) {
+  const same = (a, b) => {
+    if (a == null || b == null) return a == null && b == null;
+    if (typeof a !== 'object' || typeof b !== 'object') return a === b;
+    const keys = new Set([...Object.keys(a), ...Object.keys(b)]);
+    return [...keys].every((k) => same(a[k], b[k]));
+  };
+  return MACHINE_LIMITS.every((k) => same(machine[k], preset ? preset[k] : null));
+}
+
+/** The servo a user switches on before typing its own limits. */
+const DEFAULT_FTS = { stroke_um: 70, bandwidth_hz: 700, acceleration_m_per_s2: 300 };
 
 function get(obj, path) {
   return path.split('.').reduce((o, k) => (o == null ? undefined : o[k]), obj);
@@ -286,14 +333,19 @@ function get(obj, path) {
 
 function set(obj, path, value) {
   const keys = path.split('.');
+  const last = keys[keys.length - 1];
+  if (value === undefined) {
+    // Removing a field creates no objects on the way to it.
+    const parent = keys.length > 1 ? get(obj, keys.slice(0, -1).join('.')) : obj;
+    if (parent != null && typeof parent === 'object') delete parent[last];
+    return;
+  }
   let o = obj;
   for (const k of keys.slice(0, -1)) {
     if (o[k] == null || typeof o[k] !== 'object') o[k] = {};
     o = o[k];
   }
-  const last = keys[keys.length - 1];
-  if (value === undefined) delete o[last];
-  else o[last] = value;
+  o[last] = value;
 }
 
 /** A number from the text typed; blank gives NaN so the core names the field. */
@@ -346,12 +398,16 @@ function select(options, labels) {
   return s;
 }
 
-/** The job form inside `root`; `onChange()` is called after every edit. */
+/** The job form inside `root`; `onChange()` is called after every edit. `machinePresets`: the
+ * core's example machines (`machine_presets()`: key, label, description and the limits). */
 export class JobForm {
-  constructor(root, onChange) {
+  constructor(root, onChange, machinePresets = []) {
     this.root = root;
     this.onChange = onChange;
+    this.machinePresets = machinePresets;
     this.job = null;
+    /** The servo's limits last shown, restored when it is switched off and on again. */
+    this.lastFts = null;
     root.addEventListener('input', (e) => this.edited(e));
     root.addEventListener('change', (e) => this.edited(e));
     root.addEventListener('click', (e) => this.clicked(e));
@@ -360,7 +416,10 @@ export class JobForm {
   /** Shows `job` (a plain object as in the job JSON). */
   show(job) {
     this.job = structuredClone(job);
+    // A focused field removed here fires its "change" as it goes: that is no edit.
+    this.rebuilding = true;
     this.root.replaceChildren();
+    this.rebuilding = false;
     const presets = select(['', ...Object.keys(PRESETS)], ['preset…', ...Object.values(PRESETS).map((p) => p.label)]);
     presets.dataset.role = 'preset';
     const family = select(Object.keys(SURFACES), Object.values(SURFACES).map((s) => s.label));
@@ -378,9 +437,13 @@ export class JobForm {
   }
 
   fixedRow(f) {
+    if (f.role === 'machine-preset') return this.machinePresetRow(f);
     const value = get(this.job, f.path);
     let control;
-    if (f.options) {
+    if (f.role === 'fts') {
+      control = select(f.options, f.optionLabels);
+      control.value = value ? 'set' : '';
+    } else if (f.options) {
       control = select(f.options, f.optionLabels);
       control.value = value === undefined ? '' : String(value);
     } else {
@@ -389,9 +452,37 @@ export class JobForm {
     }
     control.dataset.kind = f.options ? (f.boolean ? 'bool' : f.numeric ? 'sign' : 'choice') : f.text ? 'text' : f.list ? 'list' : 'number';
     if (f.optional) control.dataset.optional = '1';
+    if (f.role) control.dataset.role = f.role;
+    if (f.group) control.dataset.group = f.group;
     const r = row(f.path, f.label, control, f.unit, f.hint);
     if (f.when) r.dataset.when = f.when;
+    if (f.whenField) r.dataset.whenField = f.whenField;
     return r;
+  }
+
+  /** The machine preset select: the core's example machines, "none" (no limits) and "custom". */
+  machinePresetRow(f) {
+    const control = select(['', 'none', ...this.machinePresets.map((p) => p.key)],
+      ['custom limits', 'none (no limits checked)', ...this.machinePresets.map((p) => p.label)]);
+    this.machinePresets.forEach((p, i) => {
+      control.options[i + 2].title = p.description;
+    });
+    control.dataset.role = 'machine-preset';
+    control.id = 'f-machine-preset';
+    control.title = 'example machines: orders of magnitude of each class, not any vendor\'s specification';
+    const r = el('div', { class: 'row' }, el('label', { htmlFor: control.id }, f.label), control, el('span', { class: 'unit' }, ''));
+    this.machinePresetSelect = control;
+    this.syncMachinePreset();
+    return r;
+  }
+
+  /** Shows in the machine preset select which preset the job's limits are, if any. */
+  syncMachinePreset() {
+    const control = this.machinePresetSelect;
+    if (!control) return;
+    const m = this.job.machine || {};
+    const preset = this.machinePresets.find((p) => machineIs(m, p));
+    control.value = preset ? preset.key : machineIs(m, null) ? 'none' : '';
   }
 
   surfaceRows() {
@@ -535,11 +626,13 @@ export class JobForm {
   updateVisibility() {
     for (const r of this.root.querySelectorAll('[data-when]')) {
       const field = r.dataset.whenField || 'strategy.sampling.type';
-      // An option left out of the job has the value its control shows (the default).
-      const value = String(get(this.job, field) ?? this.root.querySelector(`[data-field="${field}"]`)?.value);
+      // An option left out of the job has the value its control shows (the default); an object
+      // present (the servo) is "set".
+      const v = get(this.job, field);
+      const value = v !== null && typeof v === 'object' ? 'set' : String(v ?? this.root.querySelector(`[data-field="${field}"]`)?.value);
       r.hidden = !r.dataset.when.split(' ').includes(value);
       // A hidden surface option does not apply to the choice made: it leaves the job.
-      if (r.hidden && r.dataset.whenField) {
+      if (r.hidden && field.startsWith('surface.')) {
         for (const c of r.querySelectorAll('[data-field]')) {
           set(this.job, c.dataset.field, undefined);
           if (c.tagName === 'INPUT') c.value = '';
@@ -552,6 +645,7 @@ export class JobForm {
   /** Applies one edit to the job and tells the owner. */
   edited(e) {
     const t = e.target;
+    if (this.rebuilding || !this.root.contains(t)) return;
     if (e.type === 'input' && (t.tagName === 'SELECT' || t.type === 'file')) return;
     if (t.dataset.role === 'preset') {
       if (!t.value) return;
@@ -566,6 +660,29 @@ export class JobForm {
       delete obj[rKey];
       delete obj[cKey];
       obj[t.value] = v;
+      this.show(this.job);
+    } else if (t.dataset.role === 'machine-preset') {
+      if (!t.value) return;
+      const m = this.job.machine;
+      const preset = this.machinePresets.find((p) => p.key === t.value);
+      if (m.fts) this.lastFts = m.fts;
+      for (const k of MACHINE_LIMITS) {
+        if (preset && preset[k] != null) m[k] = structuredClone(preset[k]);
+        else delete m[k];
+      }
+      this.show(this.job);
+    } else if (t.dataset.role === 'fts') {
+      if (t.value) {
+        this.job.machine.fts = structuredClone(this.lastFts || this.machinePresets.find((p) => p.fts)?.fts || DEFAULT_FTS);
+      } else {
+        if (this.job.machine.fts) this.lastFts = this.job.machine.fts;
+        delete this.job.machine.fts;
+      }
+      this.show(this.job);
+    } else if (t.dataset.role === 'split') {
+      const cutoff = this.job.strategy.split?.cutoff_hz ?? this.job.machine.z_slide?.bandwidth_hz ?? 20;
+      if (!t.value) delete this.job.strategy.split;
+      else this.job.strategy.split = t.value === 'low_pass' ? { type: t.value, cutoff_hz: cutoff } : { type: t.value };
       this.show(this.job);
     } else if (t.dataset.role === 'variant') {
       const f = SURFACES[this.job.surface.type].fields.find((x) => x.key === t.dataset.key);
@@ -606,6 +723,7 @@ export class JobForm {
         this.show(this.job);
       }
       this.updateVisibility();
+      if (t.dataset.field.startsWith('machine.')) this.syncMachinePreset();
     } else {
       return;
     }
@@ -620,7 +738,10 @@ export class JobForm {
       case 'choice': set(this.job, path, t.dataset.optional && t.value === '' ? undefined : t.value); break;
       case 'sign': set(this.job, path, t.value === '' ? undefined : Number(t.value)); break;
       case 'bool': set(this.job, path, t.value === '' ? undefined : t.value === 'true'); break;
-      case 'number': set(this.job, path, t.dataset.optional && t.value.trim() === '' ? undefined : number(t.value)); break;
+      case 'number':
+        if (t.dataset.group) this.readGroup(t.dataset.group);
+        else set(this.job, path, t.dataset.optional && t.value.trim() === '' ? undefined : number(t.value));
+        break;
       case 'radius-value': {
         const [obj, rKey, cKey] = radiusOf(this.job.surface, t.dataset.object, t.dataset.suffix);
         obj[obj[cKey] === undefined ? rKey : cKey] = number(t.value);
@@ -646,6 +767,17 @@ export class JobForm {
       }
       default: break;
     }
+  }
+
+  /** Reads the fields of an object that is left out when all of them are blank (a slide's
+   * limits); one blank among others gives NaN, which the core names. */
+  readGroup(group) {
+    const inputs = [...this.root.querySelectorAll(`[data-group="${group}"]`)];
+    if (inputs.every((i) => i.value.trim() === '')) {
+      set(this.job, group, undefined);
+      return;
+    }
+    for (const i of inputs) set(this.job, i.dataset.field, number(i.value));
   }
 
   /** Handles the add/remove term buttons. */

@@ -126,8 +126,9 @@ export async function download(page, selector) {
 }
 
 let cli = null;
-/** Runs `spiralcam plan JOB --nc … --csv …` and returns { nc, csv } as Buffers. */
-export function planWithCli(jobPath) {
+/** Runs `spiralcam plan JOB --nc … --csv …` and returns { nc, csv } as Buffers; with `fts`
+ * (a split job) also `--fts-csv …`, returned as `fts`. */
+export function planWithCli(jobPath, { fts = false } = {}) {
   if (!cli) {
     execFileSync('cargo', ['build', '--quiet', '--locked', '-p', 'spiralcam', '--bin', 'spiralcam'], { cwd: ROOT, stdio: 'inherit' });
     cli = join(ROOT, 'target/debug/spiralcam');
@@ -135,6 +136,8 @@ export function planWithCli(jobPath) {
   const dir = mkdtempSync(join(tmpdir(), 'spiralcam-cli-'));
   const nc = join(dir, 'out.nc');
   const csv = join(dir, 'out.csv');
-  execFileSync(cli, ['plan', jobPath, '--nc', nc, '--csv', csv, '--report', join(dir, 'report.json')]);
-  return { nc: readFileSync(nc), csv: readFileSync(csv), dir };
+  const ftsCsv = join(dir, 'out-fts.csv');
+  const args = ['plan', jobPath, '--nc', nc, '--csv', csv, '--report', join(dir, 'report.json')];
+  execFileSync(cli, fts ? [...args, '--fts-csv', ftsCsv] : args);
+  return { nc: readFileSync(nc), csv: readFileSync(csv), fts: fts ? readFileSync(ftsCsv) : null, dir };
 }

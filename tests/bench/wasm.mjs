@@ -1,6 +1,8 @@
 // Planning throughput of the WebAssembly build under Node: the page's own pkg/ module runs
 // nc_program (plan + compensation + ISO NC) on 1 M-point versions of the lens-array and asphere
-// jobs. Usage: node tests/bench/wasm.mjs   (after web/build.sh; pkg/ is committed)
+// jobs, and on the 1 M-point sine grid split between slide and servo (two planning passes, the
+// spectrum, the split and the axis checks, the program with W).
+// Usage: node tests/bench/wasm.mjs   (after web/build.sh; pkg/ is committed)
 
 import { readFileSync } from 'node:fs';
 import { performance } from 'node:perf_hooks';
@@ -20,6 +22,7 @@ function million(file, revs) {
 for (const [name, job] of [
   ['lens_array_paper004', million('lens-array-paper004.json', 500)],
   ['asphere', million('asphere-f20.json', 1000)],
+  ['sine_grid_split', million('sinusoid-grid-fts.json', 1000)],
 ]) {
   let points = 0;
   const runs = [];

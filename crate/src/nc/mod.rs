@@ -579,6 +579,47 @@ mod tests {
     }
 
     #[test]
+    fn every_dialect_writes_the_servo_word_after_the_others() {
+        let header = Header {
+            lines: vec![],
+            spindle_rpm: 100.0,
+        };
+        let at = |theta: f64| PathPoint {
+            rho: 1.0,
+            theta,
+            z: -0.0123456,
+            ..Default::default()
+        };
+        for (dialect, block) in [
+            (
+                Dialect::Iso,
+                "G1 X1.000000 Z-0.010000 C5.72958 V-0.002346 F",
+            ),
+            (Dialect::Moore, "C5.72958 X1.000000 Z-0.010000 V-0.002346"),
+            (
+                Dialect::Precitech,
+                "G1 X-1.000000 Z-0.010000 C5.72958 V-0.002346",
+            ),
+        ] {
+            let spec = OutputSpec {
+                dialect,
+                fts_word: Some("V".into()),
+                ..Default::default()
+            };
+            let mut nc = Vec::new();
+            let mut w = NcWriter::new(&mut nc, &spec, &header).unwrap();
+            w.point_split(&at(0.0), -0.01).unwrap();
+            w.point_split(&at(0.1), -0.01).unwrap();
+            w.finish().unwrap();
+            let text = String::from_utf8(nc).unwrap();
+            assert!(
+                text.lines().any(|l| l.starts_with(block)),
+                "{dialect:?}:\n{text}"
+            );
+        }
+    }
+
+    #[test]
     fn the_fts_word_is_an_unused_axis_letter() {
         let spec = |w: &str| OutputSpec {
             fts_word: Some(w.into()),

@@ -22,6 +22,9 @@ use std::ops::ControlFlow;
 /// Bins of the spectrum kept for display (peaks survive the decimation).
 pub const SPECTRUM_BINS: usize = 2048;
 
+/// The most points the dynamics analyse (about 2.2 GB in memory).
+pub const MAX_POINTS: u64 = 8_000_000;
+
 /// Radius bands of the instantaneous frequency.
 pub const FREQUENCY_BANDS: usize = 32;
 
@@ -197,6 +200,17 @@ impl Dynamics {
         progress: &mut dyn FnMut(Progress) -> ControlFlow<()>,
     ) -> Result<Self, PlanError> {
         let total = planner.spiral().point_count_hint();
+        if total > MAX_POINTS {
+            return Err(crate::field::FieldError::new(
+                "strategy.sampling",
+                format!("{total} points"),
+                format!(
+                    "at most {MAX_POINTS} points when the machine dynamics run (a split or \
+                     machine limits): they hold the path in memory, about 280 bytes a point"
+                ),
+            )
+            .into());
+        }
         let mut points = Vec::with_capacity(usize::try_from(total).unwrap_or(0));
         for p in planner.points() {
             points.push(p?);

@@ -291,3 +291,18 @@ fn the_compound_eye_splits_its_two_frequencies_onto_the_right_axes() {
     assert!((peak_near(&w, hz(42.0)) - lenslets).abs() < 0.01 * lenslets);
     assert!(peak_near(&w, hz(6.0)) < 0.01 * ring);
 }
+
+#[test]
+fn the_dynamics_refuse_a_path_too_long_to_hold() {
+    let mut job = grid_fts();
+    job.strategy.feed_mm_per_rev = 0.0002; // 20 000 revolutions of 512 points
+    let e = Planner::new(&job)
+        .unwrap()
+        .run_with_dynamics(Sinks::default(), &mut |_| ControlFlow::Continue(()))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("strategy.sampling = 10240001 points: at most 8000000 points"),
+        "{e}"
+    );
+}

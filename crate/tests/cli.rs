@@ -227,6 +227,51 @@ fn plan_writes_the_program_the_table_and_the_report() {
     assert_eq!(value["points"].as_u64(), Some(rows));
 }
 
+/// A split job: the program (with W), the servo's table and the report with its dynamics are
+/// the library's `run_with_dynamics` output, byte for byte.
+#[test]
+fn plan_writes_the_split_program_and_the_servo_table() {
+    let mut job = Job::from_json(JOB).unwrap();
+    job.machine = spiralcam::machine::presets()[2].machine(job.machine.spindle_rpm);
+    job.strategy.split = Some(spiralcam::split::SplitSpec::Auto);
+    let dir = Scratch::new("split");
+    let job_path = dir.write("job.json", &job.to_json());
+    let (nc, fts, report) = (dir.path("out.nc"), dir.path("fts.csv"), dir.path("r.json"));
+    let o = spiralcam(&[
+        OsStr::new("plan"),
+        job_path.as_os_str(),
+        OsStr::new("--nc"),
+        nc.as_os_str(),
+        OsStr::new("--fts-csv"),
+        fts.as_os_str(),
+        OsStr::new("--report"),
+        report.as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (mut lib_nc, mut lib_fts) = (Vec::new(), Vec::new());
+    let lib_report = Planner::new(&job)
+        .unwrap()
+        .run_with_dynamics(
+            Sinks {
+                nc: Some(&mut lib_nc),
+                fts_table: Some(&mut lib_fts),
+                ..Default::default()
+            },
+            &mut |_| ControlFlow::Continue(()),
+        )
+        .unwrap();
+    assert!(std::fs::read(&nc).unwrap() == lib_nc, "NC differs");
+    assert!(
+        std::fs::read(&fts).unwrap() == lib_fts,
+        "servo table differs"
+    );
+    assert!(String::from_utf8(lib_nc).unwrap().contains(" W"));
+    assert_eq!(
+        std::fs::read_to_string(&report).unwrap(),
+        lib_report.to_json() + "\n"
+    );
+}
+
 #[test]
 fn plan_without_report_prints_it() {
     let dir = Scratch::new("stdout");
@@ -494,7 +539,7 @@ fn usage_errors_exit_2_with_the_usage() {
     let dir = Scratch::new("usage");
     let job = dir.write("job.json", JOB);
     let job = job.to_str().unwrap();
-    let cases: [(&[&str], &str); 7] = [
+    let cases: [(&[&str], &str); 8] = [
         (&[], "expected a command"),
         (&["frobnicate"], "expected a command"),
         (&["plan"], "missing JOB.json"),
@@ -502,6 +547,10 @@ fn usage_errors_exit_2_with_the_usage() {
         (&["plan", job, "--nc"], "--nc needs a file name"),
         (&["sag", job], "sag needs --at"),
         (&["sag", job, "--nc", "x"], "unknown option --nc"),
+        (
+            &["plan", job, "--fts-csv", "t.csv"],
+            "--fts-csv needs a split path",
+        ),
     ];
     for (args, message) in cases {
         let o = spiralcam(args);

@@ -22,7 +22,7 @@ use std::ops::ControlFlow;
 /// Bins of the spectrum kept for display (peaks survive the decimation).
 pub const SPECTRUM_BINS: usize = 2048;
 
-/// The most points the dynamics analyse (about 2.2 GB in memory).
+/// The most points the dynamics analyse (about 1.7 GB in memory).
 pub const MAX_POINTS: u64 = 8_000_000;
 
 /// Radius bands of the instantaneous frequency.
@@ -116,6 +116,36 @@ pub struct Dynamics {
     pub w_fts_mm: Option<Vec<f64>>,
 }
 
+/// The path as the dynamics keep it: its signal and the cumulative angle of every point
+/// (32 bytes a point rather than a whole [`PathPoint`]).
+struct Columns {
+    signal: PathSignal,
+    theta: Vec<f64>,
+}
+
+impl Columns {
+    fn with_capacity(n: usize) -> Self {
+        Self {
+            signal: PathSignal {
+                angle_rad: Vec::with_capacity(n),
+                rho_mm: Vec::with_capacity(n),
+                z_mm: Vec::with_capacity(n),
+            },
+            theta: Vec::with_capacity(n),
+        }
+    }
+
+    /// Appends a point; the signal's angle is measured from the first point's, as
+    /// [`PathSignal::from_points`] does.
+    fn push(&mut self, p: &PathPoint) {
+        let t0 = self.theta.first().copied().unwrap_or(p.theta);
+        self.signal.angle_rad.push((p.theta - t0).abs());
+        self.signal.rho_mm.push(p.rho);
+        self.signal.z_mm.push(p.z);
+        self.theta.push(p.theta);
+    }
+}
+
 /// Whether `job` asks for the dynamics: a split, or a limit of the machine to check.
 pub fn wanted(job: &Job) -> bool {
     let m = &job.machine;
@@ -161,6 +191,31 @@ pub fn job_field(limit: Limit) -> &'static str {
 }
 
 impl DynamicsReport {
+    /// What the program's header says of the split: cutoff, the channels' PV and the verdict.
+    pub fn header_lines(&self) -> Vec<String> {
+        let Some(s) = &self.split else {
+            return Vec::new();
+        };
+        let cutoff = match s.cutoff_hz {
+            Some(hz) => format!("cutoff {hz:.4} Hz"),
+            None => "no cutoff".to_string(),
+        };
+        let verdict = match &s.verdict {
+            Verdict::Unchecked => "not checked against the machine".to_string(),
+            Verdict::Feasible {
+                slide_alone: true, ..
+            } => "within the machine's limits, the slide alone".to_string(),
+            Verdict::Feasible { .. } => "within the machine's limits".to_string(),
+            Verdict::Infeasible { .. } => {
+                "EXCEEDS the machine's limits (see the report)".to_string()
+            }
+        };
+        vec![format!(
+            "split: {cutoff}, Z PV {:.4} um, servo PV {:.4} um, {verdict}",
+            s.z_slide_pv_um, s.w_fts_pv_um
+        )]
+    }
+
     /// What an operator must read before cutting: the axis checks' warnings and a split that
     /// exceeds the machine, with the speed that would do.
     pub fn warnings(&self) -> Vec<String> {
@@ -206,35 +261,43 @@ impl Dynamics {
                 format!("{total} points"),
                 format!(
                     "at most {MAX_POINTS} points when the machine dynamics run (a split or \
-                     machine limits): they hold the path in memory, about 280 bytes a point"
+                     machine limits): they hold the path in memory, about 210 bytes a point"
                 ),
             )
             .into());
         }
-        let mut points = Vec::with_capacity(usize::try_from(total).unwrap_or(0));
+        let mut path = Columns::with_capacity(usize::try_from(total).unwrap_or(0));
         for p in planner.points() {
-            points.push(p?);
-            let done = points.len() as u64;
+            path.push(&p?);
+            let done = path.theta.len() as u64;
             if done.is_multiple_of(PROGRESS_EVERY) && progress(Progress { done, total }).is_break()
             {
                 return Err(PlanError::Cancelled);
             }
         }
-        Self::of_points(planner.job(), &points)
+        Self::of_columns(planner.job(), &path)
     }
 
     /// The dynamics of the planned `points` of `job`.
     pub fn of_points(job: &Job, points: &[PathPoint]) -> Result<Self, PlanError> {
+        let mut path = Columns::with_capacity(points.len());
+        for p in points {
+            path.push(p);
+        }
+        Self::of_columns(job, &path)
+    }
+
+    fn of_columns(job: &Job, path: &Columns) -> Result<Self, PlanError> {
         let machine = &job.machine;
         let rpm = machine.spindle_rpm;
-        let signal = PathSignal::from_points(points.iter().copied());
-        let spectrum = amplitude_spectrum(&signal, rpm, SPECTRUM_BINS);
-        let instantaneous_frequency = instantaneous_frequency(&signal, rpm, FREQUENCY_BANDS);
+        let signal = &path.signal;
+        let spectrum = amplitude_spectrum(signal, rpm, SPECTRUM_BINS);
+        let instantaneous_frequency = instantaneous_frequency(signal, rpm, FREQUENCY_BANDS);
         let (split_report, z_slide, w_fts) = match &job.strategy.split {
             None => (None, None, None),
             Some(spec) => {
                 let limits = split_limits(machine);
-                let s = split(&signal, spec, rpm, limits.as_ref())?;
+                let s = split(signal, spec, rpm, limits.as_ref())?;
                 let report = SplitReport {
                     spec: spec.clone(),
                     cutoff_hz: s.cutoff_hz,
@@ -245,17 +308,16 @@ impl Dynamics {
                 (Some(report), Some(s.z_slide_mm), Some(s.w_fts_mm))
             }
         };
-        let samples: Vec<AxisSample> = points
-            .iter()
-            .enumerate()
-            .map(|(i, p)| {
+        let samples: Vec<AxisSample> = (0..path.theta.len())
+            .map(|i| {
+                let (rho, z) = (signal.rho_mm[i], signal.z_mm[i]);
                 let z_slide = z_slide.as_ref().and_then(|z| z.get(i)).copied();
                 AxisSample {
-                    theta: p.theta,
-                    rho_mm: p.rho,
-                    x_mm: p.rho,
-                    z_mm: z_slide.unwrap_or(p.z),
-                    w_mm: z_slide.map_or(0.0, |z| p.z - z),
+                    theta: path.theta[i],
+                    rho_mm: rho,
+                    x_mm: rho,
+                    z_mm: z_slide.unwrap_or(z),
+                    w_mm: z_slide.map_or(0.0, |zs| z - zs),
                 }
             })
             .collect();

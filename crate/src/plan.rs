@@ -423,7 +423,9 @@ impl Planner {
             z_slide: dynamics.z_slide_mm.as_deref(),
             fts_table: fts_table.map(|w| w as &mut dyn Write),
         };
-        let mut report = self.run(sinks, progress)?;
+        let mut header = self.header();
+        header.lines.extend(dynamics.report.header_lines());
+        let mut report = self.run_with_header(sinks, progress, header)?;
         report.warnings.extend(dynamics.report.warnings());
         report.dynamics = Some(dynamics.report);
         Ok(report)
@@ -438,12 +440,22 @@ impl Planner {
         sinks: Sinks,
         progress: &mut dyn FnMut(Progress) -> ControlFlow<()>,
     ) -> Result<Report, PlanError> {
+        self.run_with_header(sinks, progress, self.header())
+    }
+
+    /// [`Self::run`] with the program's header given.
+    fn run_with_header(
+        &self,
+        sinks: Sinks,
+        progress: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+        header: Header,
+    ) -> Result<Report, PlanError> {
         let mut counter = std::io::sink();
         let nc_out: &mut dyn Write = match sinks.nc {
             Some(w) => w,
             None => &mut counter,
         };
-        let mut nc = NcWriter::new(nc_out, &self.job.output, &self.header())?;
+        let mut nc = NcWriter::new(nc_out, &self.job.output, &header)?;
         let conv = self.job.output.conventions();
         let mut csv = sinks.csv.map(|w| CsvWriter::new(w, conv)).transpose()?;
         let z_slide = sinks.z_slide;

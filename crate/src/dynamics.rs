@@ -13,7 +13,7 @@ use crate::axis_checks::{AxisReport, AxisSample, check_axes};
 use crate::job::Job;
 use crate::machine::MachineSpec;
 use crate::path_signal::PathSignal;
-use crate::plan::{PROGRESS_EVERY, PathPoint, PlanError, Planner, Progress};
+use crate::plan::{PathPoint, PlanError, Planner, Progress};
 use crate::spectrum::{BandFrequency, Spectrum, amplitude_spectrum, instantaneous_frequency};
 use crate::split::{Limit, SplitLimits, SplitSpec, Verdict, split};
 use serde::Serialize;
@@ -267,14 +267,10 @@ impl Dynamics {
             .into());
         }
         let mut path = Columns::with_capacity(usize::try_from(total).unwrap_or(0));
-        for p in planner.points() {
-            path.push(&p?);
-            let done = path.theta.len() as u64;
-            if done.is_multiple_of(PROGRESS_EVERY) && progress(Progress { done, total }).is_break()
-            {
-                return Err(PlanError::Cancelled);
-            }
-        }
+        planner.for_each_point(progress, &mut |p, _| {
+            path.push(p);
+            Ok(())
+        })?;
         Self::of_columns(planner.job(), &path)
     }
 

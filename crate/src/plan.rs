@@ -396,6 +396,39 @@ impl Planner {
         )
     }
 
+    /// Plans every point in order, compensating batches of [`BATCH`] points on every core, and
+    /// hands each to `visit` with whether the two-way offset folds there; `progress` is called
+    /// every [`PROGRESS_EVERY`] points and at the end (`Break` cancels). Returns the count.
+    pub fn for_each_point(
+        &self,
+        progress: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+        visit: &mut dyn FnMut(&PathPoint, bool) -> Result<(), PlanError>,
+    ) -> Result<u64, PlanError> {
+        let total = self.spiral.point_count_hint();
+        let mut done = 0u64;
+        let mut spiral = self.spiral.points();
+        let (mut input, mut output) = (Vec::with_capacity(BATCH), Vec::with_capacity(BATCH));
+        loop {
+            input.clear();
+            input.extend(spiral.by_ref().take(BATCH));
+            if input.is_empty() {
+                break;
+            }
+            self.compensate_batch(done, &input, &mut output)?;
+            for (p, folds) in &output {
+                visit(p, *folds)?;
+                done += 1;
+                if done.is_multiple_of(PROGRESS_EVERY)
+                    && progress(Progress { done, total }).is_break()
+                {
+                    return Err(PlanError::Cancelled);
+                }
+            }
+        }
+        let _ = progress(Progress { done, total: done });
+        Ok(done)
+    }
+
     /// Plans the whole path as [`Self::run`] does, after the machine dynamics when the job asks
     /// for them ([`crate::dynamics::wanted`]): a first pass plans the path into memory,
     /// analyses and splits it, the second writes it with the slide's share and the servo's
@@ -467,49 +500,30 @@ impl Planner {
             None => None,
         };
         let mut display = sinks.display;
-        let total = self.spiral.point_count_hint();
         let mut stats = Stats::default();
-        let mut spiral = self.spiral.points();
-        let (mut input, mut output) = (Vec::with_capacity(BATCH), Vec::with_capacity(BATCH));
-        loop {
-            input.clear();
-            input.extend(spiral.by_ref().take(BATCH));
-            if input.is_empty() {
-                break;
-            }
-            self.compensate_batch(stats.points, &input, &mut output)?;
-            for (p, folds) in &output {
-                match z_slide.map(|z| z.get(stats.points as usize)) {
-                    None => nc.point(p)?,
-                    Some(Some(&z)) => {
-                        nc.point_split(p, z)?;
-                        if let Some(t) = fts_table.as_mut() {
-                            t.point(p, z)?;
-                        }
+        self.for_each_point(progress, &mut |p, folds| {
+            match z_slide.map(|z| z.get(p.index as usize)) {
+                None => nc.point(p)?,
+                Some(Some(&z)) => {
+                    nc.point_split(p, z)?;
+                    if let Some(t) = fts_table.as_mut() {
+                        t.point(p, z)?;
                     }
-                    Some(None) => return Err(PlanError::SplitLength(stats.points)),
                 }
-                if let Some(csv) = csv.as_mut() {
-                    csv.point(p)?;
-                }
-                if let Some(d) = display.as_deref_mut() {
-                    d.push(p);
-                }
-                stats.add(p);
-                if *folds {
-                    stats.add_loop_point(p);
-                }
-                if stats.points % PROGRESS_EVERY == 0
-                    && progress(Progress {
-                        done: stats.points,
-                        total,
-                    })
-                    .is_break()
-                {
-                    return Err(PlanError::Cancelled);
-                }
+                Some(None) => return Err(PlanError::SplitLength(p.index)),
             }
-        }
+            if let Some(csv) = csv.as_mut() {
+                csv.point(p)?;
+            }
+            if let Some(d) = display.as_deref_mut() {
+                d.push(p);
+            }
+            stats.add(p);
+            if folds {
+                stats.add_loop_point(p);
+            }
+            Ok(())
+        })?;
         let nc_bytes = nc.finish()?;
         if let Some(csv) = csv {
             csv.finish()?;
@@ -517,10 +531,6 @@ impl Planner {
         if let Some(t) = fts_table {
             t.finish()?;
         }
-        let _ = progress(Progress {
-            done: stats.points,
-            total: stats.points,
-        });
         let zones = self.concave_zones()?;
         Ok(Report::new(self, &stats, nc_bytes, zones))
     }

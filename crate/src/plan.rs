@@ -396,7 +396,7 @@ impl Planner {
         )
     }
 
-    /// Plans every point in order, compensating batches of [`BATCH`] points on every core, and
+    /// Plans every point in order, compensating batches of 16 384 points on every core, and
     /// hands each to `visit` with whether the two-way offset folds there; `progress` is called
     /// every [`PROGRESS_EVERY`] points and at the end (`Break` cancels). Returns the count.
     pub fn for_each_point(

@@ -195,6 +195,13 @@ function axisText(a, servo = false) {
 
 const at = (p) => (p ? ` at ρ ${fmt(p.rho_mm, 3)} mm, θ ${fmt(p.theta_deg, 1)}°` : '');
 
+/** A slide's bandwidth check: the frequency its channel asks for against its limit. */
+function bandwidthText(b) {
+  if (b.needed_hz == null) return 'not analysed';
+  const limit = b.limit_hz == null ? ' (not checked)' : ` of ${fmt(b.limit_hz, 1)} Hz${b.within_limit ? '' : ': too fast'}`;
+  return `${fmt(b.needed_hz, 2)} Hz needed${limit}`;
+}
+
 /** The dynamics panel: the split's verdict and checks, the axis checks and three plots. */
 function showDynamics(d, job) {
   const panel = $('dynamics');
@@ -227,9 +234,11 @@ function showDynamics(d, job) {
   const br = a.block_rate;
   rows.push(
     ['Block rate', `${fmt(br.required_hz, 1)} Hz needed${at(br.at)}${br.limit_hz == null ? ' (not checked)' : `; limit ${fmt(br.limit_hz, 1)} Hz${br.violation_count ? ` (${fmt(br.violation_count, 0)} blocks over)` : ''}`}`],
+    ['X bandwidth', bandwidthText(d.bandwidth.x)],
+    ['Z bandwidth', bandwidthText(d.bandwidth.z)],
     ['Cycle time', `${duration(a.cycle_time_s)} at ${fmt(rpm)} rpm`],
     ['Highest spindle speed', a.max_spindle ? `${fmt(a.max_spindle.max_spindle_rpm, 1)} rpm, bound by ${a.max_spindle.binding_limit}${at(a.max_spindle.at)}` : 'no limit given binds it'],
-    ['Within limits', a.within_limits ? 'yes' : 'no (see the warnings above)'],
+    ['Within limits', a.within_limits && d.bandwidth.x.within_limit && d.bandwidth.z.within_limit ? 'yes' : 'no (see the warnings above)'],
   );
   $('dynamics-table').replaceChildren(...keyRows(rows));
   const checks = split?.verdict.checks || [];

@@ -12,9 +12,12 @@
 use crate::axis_checks::{AxisReport, AxisSample, check_axes};
 use crate::job::Job;
 use crate::machine::MachineSpec;
-use crate::path_signal::PathSignal;
+use crate::path_signal::{PathSignal, UniformSignal, hz};
 use crate::plan::{PathPoint, PlanError, Planner, Progress};
-use crate::spectrum::{BandFrequency, Spectrum, amplitude_spectrum, instantaneous_frequency};
+use crate::spectrum::{
+    BandFrequency, Spectrum, amplitude_spectrum, highest_significant_cycles_per_rev,
+    instantaneous_frequency,
+};
 use crate::split::{Limit, SplitLimits, SplitSpec, Verdict, split};
 use serde::Serialize;
 use std::ops::ControlFlow;
@@ -41,6 +44,47 @@ pub struct DynamicsReport {
     pub axes: AxisReport,
     /// The slide's and the servo's channels along the path, for plots.
     pub channels: Option<ChannelProfile>,
+    /// The frequencies the X and Z slides are asked to follow against their bandwidths.
+    pub bandwidth: SlideBandwidths,
+}
+
+/// A slide's bandwidth against what its channel asks.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BandwidthCheck {
+    /// The channel's highest significant frequency at the spindle speed, Hz (the highest at
+    /// which the spectrum of its non-symmetric part reaches 1 % of its largest amplitude;
+    /// [`crate::spectrum::highest_significant_cycles_per_rev`]); `None` when the path cannot
+    /// be analysed.
+    pub needed_hz: Option<f64>,
+    /// The slide's bandwidth, Hz; `None` when the job gives none.
+    pub limit_hz: Option<f64>,
+    /// Whether the slide follows it (true when either is unknown).
+    pub within_limit: bool,
+}
+
+/// The bandwidth checks of both slides: X, and Z with its share of a split path.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SlideBandwidths {
+    /// The X slide.
+    pub x: BandwidthCheck,
+    /// The Z slide.
+    pub z: BandwidthCheck,
+}
+
+impl BandwidthCheck {
+    /// The check of a channel given on the uniform grid `grid` (its values `on_grid`).
+    fn of(grid: Option<(&UniformSignal, &[f64])>, rpm: f64, limit_hz: Option<f64>) -> Self {
+        let needed_hz = grid.map(|(g, v)| hz(highest_significant_cycles_per_rev(g, v), rpm));
+        let within_limit = match (needed_hz, limit_hz) {
+            (Some(n), Some(l)) => n <= l,
+            _ => true,
+        };
+        Self {
+            needed_hz,
+            limit_hz,
+            within_limit,
+        }
+    }
 }
 
 /// The two channels along the path in at most [`PROFILE_BUCKETS`] runs of consecutive points,
@@ -220,6 +264,21 @@ impl DynamicsReport {
     /// exceeds the machine, with the speed that would do.
     pub fn warnings(&self) -> Vec<String> {
         let mut out = self.axes.warnings.clone();
+        for (axis, b) in [("x", self.bandwidth.x), ("z", self.bandwidth.z)] {
+            if let (false, Some(n), Some(l)) = (b.within_limit, b.needed_hz, b.limit_hz) {
+                out.push(format!(
+                    "the {} slide must follow {n:.3} Hz, above machine.{axis}_slide.bandwidth_hz \
+                     = {l} Hz: lower the spindle speed to {:.1} rpm or less{}",
+                    axis.to_uppercase(),
+                    self.axes.spindle_rpm * l / n,
+                    if axis == "z" {
+                        ", or split the path with a fast tool servo"
+                    } else {
+                        ""
+                    }
+                ));
+            }
+        }
         if let Some(SplitReport {
             verdict:
                 Verdict::Infeasible {
@@ -318,6 +377,30 @@ impl Dynamics {
             })
             .collect();
         let axes = check_axes(&samples, machine);
+        let grid = signal.uniform().ok();
+        // The slide's Z on the grid: the path's, or its share of a split path resampled alike.
+        let slide_grid = match &z_slide {
+            None => None,
+            Some(z) => PathSignal {
+                z_mm: z.clone(),
+                ..signal.clone()
+            }
+            .uniform()
+            .ok(),
+        };
+        let slide_z = slide_grid.as_ref().or(grid.as_ref()).map(|g| &g.z_mm[..]);
+        let bandwidth = SlideBandwidths {
+            x: BandwidthCheck::of(
+                grid.as_ref().map(|g| (g, &g.rho_mm[..])),
+                rpm,
+                machine.x_slide.map(|s| s.bandwidth_hz),
+            ),
+            z: BandwidthCheck::of(
+                grid.as_ref().zip(slide_z),
+                rpm,
+                machine.z_slide.map(|s| s.bandwidth_hz),
+            ),
+        };
         let channels = match (&z_slide, &w_fts) {
             (Some(z), Some(w)) => Some(ChannelProfile::of(&signal.rho_mm, z, w)),
             _ => None,
@@ -329,6 +412,7 @@ impl Dynamics {
                 split: split_report,
                 axes,
                 channels,
+                bandwidth,
             },
             z_slide_mm: z_slide,
             w_fts_mm: w_fts,

@@ -79,6 +79,10 @@ for (const backend of ['WebGPU', 'WebGL2']) {
       assert.equal(await page.textContent('[data-key="Split"]'), 'none: Z cuts alone');
       assert.match(await page.textContent('[data-key="Block rate"]'), /^2,400 Hz needed at ρ .*; limit 10,000 Hz$/);
       assert.match(await page.textContent('[data-key="Highest spindle speed"]'), /^[\d,.]+ rpm, bound by machine\./);
+      // The lenslets at 800 rpm are far beyond the Z slide's 20 Hz; X, linear in the angle, asks nothing.
+      assert.match(await page.textContent('[data-key="Z bandwidth"]'), /^[\d,.]+ Hz needed of 20(\.0)? Hz: too fast$/);
+      assert.match(await page.textContent('[data-key="X bandwidth"]'), /^0(\.00)? Hz needed of 20(\.0)? Hz$/);
+      assert.equal(await page.textContent('[data-key="Within limits"]'), 'no (see the warnings above)');
       assert.equal(await page.isVisible('#channels-figure'), false);
       assert.equal(await page.isVisible('#download-fts'), false);
       assert.equal(await page.isVisible('[data-field="output.fts_word"]'), false);
@@ -95,6 +99,7 @@ for (const backend of ['WebGPU', 'WebGL2']) {
       assert.match(await page.textContent('[data-key="W axis"]'), /m\/s², stroke [\d.]+ of 70 µm$/);
       assert.equal(await page.locator('#split-checks tbody tr').count(), d.split.verdict.checks.length);
       assert.equal(await page.locator('#split-checks tr.fail').count(), 0);
+      assert.doesNotMatch(await page.textContent('[data-key="Z bandwidth"]'), /too fast/);
       for (const id of ['plot-spectrum', 'plot-frequency', 'plot-channels']) {
         const stats = await plotStats(page, id);
         assert.ok(stats.width > 200, `${id}: ${stats.width} pixels wide`);

@@ -306,3 +306,35 @@ fn the_dynamics_refuse_a_path_too_long_to_hold() {
         "{e}"
     );
 }
+
+/// The slides' bandwidths: a tilted flat asks Z for one cycle per revolution (n/60 Hz; its
+/// amplitude grows along the path, so the Hann spectrum's main lobe spreads it over a few bins
+/// of 1/revolutions of a cycle: within 4 bins, 4 % here) and X for nothing (X is linear in the
+/// angle); above the Z slide's 20 Hz the report warns with the speed that would do, 20·60 rpm
+/// within the same 4 %.
+#[test]
+fn the_slides_bandwidths_are_checked() {
+    let mut job = example_job("tilted-flat.json");
+    job.strategy.feed_mm_per_rev = 0.1; // 100 revolutions
+    for (rpm, within) in [(500.0, true), (1500.0, false)] {
+        job.machine = presets()[0].machine(rpm);
+        let (report, _, _) = plan(&job);
+        let b = report.dynamics.unwrap().bandwidth;
+        let needed = b.z.needed_hz.unwrap();
+        let bins = 4.0 * rpm / 60.0 / 100.0;
+        assert!(
+            (needed - rpm / 60.0).abs() <= bins,
+            "{rpm} rpm: Z needs {needed} Hz"
+        );
+        assert_eq!(b.z.limit_hz, Some(20.0));
+        assert_eq!(b.z.within_limit, within);
+        assert_eq!(b.x.needed_hz, Some(0.0), "X is linear in the angle");
+        let warning = report.warnings.iter().find(|w| w.contains("bandwidth_hz"));
+        assert_eq!(warning.is_none(), within, "{:?}", report.warnings);
+        if let Some(w) = warning {
+            let speed = 20.0 / needed * rpm;
+            assert!(w.contains(&format!("{speed:.1} rpm or less")), "{w}");
+            assert!((speed - 1200.0).abs() <= 0.04 * 1200.0, "{speed}");
+        }
+    }
+}

@@ -4,7 +4,7 @@
 //! example machine. Criterion prints the figures as elements (points) per second.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use spiralcam::axis_checks::{check_axes, slide_only_samples};
+use spiralcam::axis_checks::{AxisSample, check_axes};
 use spiralcam::job::Job;
 use spiralcam::machine::presets;
 use spiralcam::plan::{Planner, Sinks};
@@ -60,7 +60,10 @@ fn plan_and_write(c: &mut Criterion) {
 fn axis_checks(c: &mut Criterion) {
     let job = million(include_str!("../jobs/lens-array-paper004.json"), 500.0);
     let planner = Planner::new(&job).expect("valid job");
-    let samples = slide_only_samples(&planner).expect("plan");
+    let samples: Vec<AxisSample> = planner
+        .points()
+        .map(|p| AxisSample::slide_only(&p.expect("plan")))
+        .collect();
     let machine = presets()[2].machine(job.machine.spindle_rpm);
     let mut group = c.benchmark_group("check_axes_1M");
     group.sample_size(10);

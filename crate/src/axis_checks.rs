@@ -41,9 +41,8 @@
 //! what each axis must follow in frequency.
 
 use crate::machine::MachineSpec;
-use crate::plan::{PathPoint, Planner};
+use crate::plan::PathPoint;
 use crate::report::Location;
-use crate::surface::UndefinedError;
 use serde::Serialize;
 use std::f64::consts::TAU;
 
@@ -70,24 +69,22 @@ pub struct AxisSample {
 }
 
 impl AxisSample {
-    /// The point with all of Z on the slide (slow slide servo alone, W = 0).
-    pub fn slide_only(p: &PathPoint) -> Self {
+    /// The point at angle `theta` and radius `rho_mm` (X = ρ) of height `z_mm`: with
+    /// `z_slide` the slide at it and the servo the rest (W = z − Z), else all on the slide.
+    pub fn new(theta: f64, rho_mm: f64, z_mm: f64, z_slide: Option<f64>) -> Self {
         Self {
-            theta: p.theta,
-            rho_mm: p.rho,
-            x_mm: p.rho,
-            z_mm: p.z,
-            w_mm: 0.0,
+            theta,
+            rho_mm,
+            x_mm: rho_mm,
+            z_mm: z_slide.unwrap_or(z_mm),
+            w_mm: z_slide.map_or(0.0, |z| z_mm - z),
         }
     }
-}
 
-/// The planner's whole path as [`AxisSample::slide_only`] samples (40 bytes a point).
-pub fn slide_only_samples(planner: &Planner) -> Result<Vec<AxisSample>, UndefinedError> {
-    planner
-        .points()
-        .map(|p| p.map(|p| AxisSample::slide_only(&p)))
-        .collect()
+    /// The path point with all of Z on the slide (slow slide servo alone, W = 0).
+    pub fn slide_only(p: &PathPoint) -> Self {
+        Self::new(p.theta, p.rho, p.z, None)
+    }
 }
 
 /// Where on the path: the sample's index and its place on the part.
@@ -634,6 +631,17 @@ fn warnings(r: &AxisReport) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    use crate::plan::Planner;
+    use crate::surface::UndefinedError;
+
+    /// The planner's whole path as [`AxisSample::slide_only`] samples.
+    fn slide_only_samples(planner: &Planner) -> Result<Vec<AxisSample>, UndefinedError> {
+        planner
+            .points()
+            .map(|p| p.map(|p| AxisSample::slide_only(&p)))
+            .collect()
+    }
     use crate::job::Job;
     use crate::machine::{FtsSpec, SlideSpec, presets};
     use proptest::prelude::*;

@@ -12,7 +12,7 @@
 use crate::axis_checks::{AxisReport, AxisSample, check_axes};
 use crate::job::Job;
 use crate::machine::MachineSpec;
-use crate::path_signal::{PathSignal, UniformSignal, hz};
+use crate::path_signal::{PathSignal, UniformSignal, extremes, hz, peak_to_valley};
 use crate::plan::{PathPoint, PlanError, Planner, Progress};
 use crate::spectrum::{
     BandFrequency, Spectrum, amplitude_spectrum, highest_significant_cycles_per_rev,
@@ -115,15 +115,8 @@ impl ChannelProfile {
         let mut p = Self::default();
         for start in (0..n).step_by(size) {
             let end = (start + size).min(n);
-            let range = |v: &[f64]| {
-                v[start..end]
-                    .iter()
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
-                        (lo.min(x), hi.max(x))
-                    })
-            };
-            let (zl, zh) = range(z);
-            let (wl, wh) = range(w);
+            let (zl, zh) = extremes(z[start..end].iter().copied());
+            let (wl, wh) = extremes(w[start..end].iter().copied());
             p.rho_mm.push(rho[start]);
             p.z_min_mm.push(zl);
             p.z_max_mm.push(zh);
@@ -214,12 +207,7 @@ pub fn split_limits(m: &MachineSpec) -> Option<SplitLimits> {
 }
 
 fn pv_um(values: &[f64]) -> f64 {
-    let (lo, hi) = values
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
-            (lo.min(v), hi.max(v))
-        });
-    if lo <= hi { (hi - lo) * 1e3 } else { 0.0 }
+    peak_to_valley(values.iter().copied()) * 1e3
 }
 
 /// The job field of a splitter's limit, with the splitter's unit where it differs.
@@ -365,15 +353,8 @@ impl Dynamics {
         };
         let samples: Vec<AxisSample> = (0..path.theta.len())
             .map(|i| {
-                let (rho, z) = (signal.rho_mm[i], signal.z_mm[i]);
-                let z_slide = z_slide.as_ref().and_then(|z| z.get(i)).copied();
-                AxisSample {
-                    theta: path.theta[i],
-                    rho_mm: rho,
-                    x_mm: rho,
-                    z_mm: z_slide.unwrap_or(z),
-                    w_mm: z_slide.map_or(0.0, |zs| z - zs),
-                }
+                let slide = z_slide.as_ref().and_then(|z| z.get(i)).copied();
+                AxisSample::new(path.theta[i], signal.rho_mm[i], signal.z_mm[i], slide)
             })
             .collect();
         let axes = check_axes(&samples, machine);
@@ -382,8 +363,9 @@ impl Dynamics {
         let slide_grid = match &z_slide {
             None => None,
             Some(z) => PathSignal {
+                angle_rad: signal.angle_rad.clone(),
+                rho_mm: signal.rho_mm.clone(),
                 z_mm: z.clone(),
-                ..signal.clone()
             }
             .uniform()
             .ok(),

@@ -303,6 +303,21 @@ pub fn residual_gain(cycles_per_rev: f64, samples_per_rev: usize) -> f64 {
     1.0 - (x.sin() / den).powi(2)
 }
 
+/// The smallest and largest of `values`; `(∞, −∞)` for none.
+pub fn extremes(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
+    values
+        .into_iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        })
+}
+
+/// Largest minus smallest of `values` (0 for none).
+pub fn peak_to_valley(values: impl IntoIterator<Item = f64>) -> f64 {
+    let (lo, hi) = extremes(values);
+    if hi >= lo { hi - lo } else { 0.0 }
+}
+
 /// Angular speed of the spindle, rad/s.
 pub fn omega(spindle_rpm: f64) -> f64 {
     TAU * spindle_rpm / 60.0

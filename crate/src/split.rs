@@ -48,7 +48,7 @@
 //! for k*. No speed helps when the stroke fails.
 
 use crate::field::{FieldError, positive};
-use crate::path_signal::{PathSignal, SignalError, UniformSignal, hz, omega};
+use crate::path_signal::{PathSignal, SignalError, UniformSignal, hz, omega, peak_to_valley};
 use crate::spectrum::highest_significant_cycles_per_rev;
 use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
@@ -515,14 +515,6 @@ impl Context<'_> {
             ),
         ]
     }
-}
-
-/// Largest minus smallest value (0 for none).
-fn peak_to_valley(values: impl Iterator<Item = f64>) -> f64 {
-    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-        (lo.min(v), hi.max(v))
-    });
-    if hi >= lo { hi - lo } else { 0.0 }
 }
 
 /// The verdict of `checks` at `rpm`; `other_rpm` a feasible speed found for another split.

@@ -17,6 +17,8 @@
 //!   every step obeys its zone's rule, the count hint is close.
 //! - Fields: bad tolerances name `strategy.sampling.pv_tolerance_um`; the JSON is snake_case.
 
+mod common;
+
 use spiralcam::hcaa::{self, SAFETY};
 use spiralcam::job::Job;
 use spiralcam::linearization::analyse;
@@ -163,12 +165,7 @@ fn asphere_holds_the_tolerance() {
 
 #[test]
 fn compound_eye_holds_the_tolerance_with_fewer_points() {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../crate/jobs/compound-eye-paper000.json"
-    ))
-    .unwrap();
-    let mut j = Job::from_json(&text).unwrap();
+    let mut j = common::example_job("compound-eye-paper000.json");
     j.part.diameter_mm = 1.2;
     j.strategy.feed_mm_per_rev = 0.02;
     let (h, a, u) = all_three(&j, 1.0);

@@ -44,6 +44,15 @@ fn grid_fts() -> Job {
     job
 }
 
+/// Why `job` cannot be planned with its dynamics (it is read fine).
+fn dynamics_error(job: &Job) -> String {
+    Planner::new(job)
+        .unwrap()
+        .run_with_dynamics(Sinks::default(), &mut |_| ControlFlow::Continue(()))
+        .unwrap_err()
+        .to_string()
+}
+
 /// The integer value of a word (e.g. `Z-0.001234` at 6 decimals → −1234) in a block.
 fn word(line: &str, letter: char) -> Option<i64> {
     let w = line.split_whitespace().find(|w| w.starts_with(letter))?;
@@ -229,11 +238,7 @@ fn a_split_the_machine_cannot_make_is_refused_naming_the_field() {
     // Above the path's Nyquist frequency (256 cycles/rev at 300 rpm: 1280 Hz) on the path.
     let mut job = grid_fts();
     job.strategy.split = Some(SplitSpec::LowPass { cutoff_hz: 2000.0 });
-    let e = Planner::new(&job)
-        .unwrap()
-        .run_with_dynamics(Sinks::default(), &mut |_| ControlFlow::Continue(()))
-        .unwrap_err()
-        .to_string();
+    let e = dynamics_error(&job);
     assert!(
         e.starts_with("strategy.split.cutoff_hz = 2000: must be a finite number in (0, 1280] Hz"),
         "{e}"
@@ -296,11 +301,7 @@ fn the_compound_eye_splits_its_two_frequencies_onto_the_right_axes() {
 fn the_dynamics_refuse_a_path_too_long_to_hold() {
     let mut job = grid_fts();
     job.strategy.feed_mm_per_rev = 0.0002; // 20 000 revolutions of 512 points
-    let e = Planner::new(&job)
-        .unwrap()
-        .run_with_dynamics(Sinks::default(), &mut |_| ControlFlow::Continue(()))
-        .unwrap_err()
-        .to_string();
+    let e = dynamics_error(&job);
     assert!(
         e.starts_with("strategy.sampling = 10240001 points: at most 8000000 points"),
         "{e}"

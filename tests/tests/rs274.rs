@@ -10,6 +10,8 @@
 //! a second message of the same parameters offset by 1000 mm (X, Z) and 100 000° (C), which
 //! keeps all 6 decimals of small values: both are checked.
 
+mod common;
+
 use spiralcam::job::Job;
 use spiralcam::plan::{PathPoint, Planner, Sinks};
 use std::ops::ControlFlow;
@@ -283,12 +285,7 @@ fn a_lens_array_program_with_mirrored_x_and_z_reads_back() {
 #[test]
 fn a_split_program_reads_back_with_the_servo_word() {
     use spiralcam::nc::NcWriter;
-    let json = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../crate/jobs/tilted-flat.json"
-    ))
-    .unwrap();
-    let mut job = Job::from_json(&json).unwrap();
+    let mut job = common::example_job("tilted-flat.json");
     job.name = "split".into();
     job.output = spiralcam::nc::OutputSpec {
         fts_word: Some("A".into()),

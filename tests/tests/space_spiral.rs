@@ -11,9 +11,7 @@ use spiralcam::space_spiral::{
     BaseFitOptions, BaseSurface, DEFAULT_ALPHA_LIM_DEG, pass_spacing, quasi_revolution,
     space_spiral, z_projection,
 };
-use spiralcam::surface::{
-    Asphere, AsphereSpec, PartDisc, Surface, SurfaceSpec, TiltedFlat, TiltedFlatSpec,
-};
+use spiralcam::surface::{Asphere, AsphereSpec, PartDisc, Surface, TiltedFlat, TiltedFlatSpec};
 
 fn sphere(r: f64) -> Asphere {
     Asphere::new(&AsphereSpec {
@@ -145,13 +143,7 @@ fn space_spiral_spaces_passes_more_evenly_than_z_projection_on_a_steep_sphere() 
 #[test]
 fn on_the_compound_eye_the_space_spiral_spaces_passes_more_evenly() {
     // The paper-000 compound eye job surface: close to a sphere R −40 mm, with lenslets.
-    let json = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../crate/jobs/compound-eye-paper000.json"
-    ))
-    .unwrap();
-    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
-    let spec: SurfaceSpec = serde_json::from_value(v["surface"].clone()).unwrap();
+    let spec = common::example_job("compound-eye-paper000.json").surface;
     let s = spec.build_in(PartDisc::centred(5.0)).unwrap();
     let opts = BaseFitOptions::default();
     let fit = BaseSurface::fit(s.as_ref(), 5.0, &opts).unwrap();

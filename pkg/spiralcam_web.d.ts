@@ -201,7 +201,7 @@ export function default_job(): string;
 export function fts_table(job: any, progress: Function): Uint8Array;
 
 /**
- * The example machines (`spiralcam::machine::presets`) as JSON: a list of objects with `key`,
+ * The example machines (`spiralcam::job::machine::presets`) as JSON: a list of objects with `key`,
  * `label`, `description`, `block_rate_hz`, `x_slide`, `z_slide` and `fts` (null: none), in the
  * job's units, for the page's machine presets.
  */

@@ -4,9 +4,9 @@
 //! example machine. Criterion prints the figures as elements (points) per second.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use spiralcam::axis_checks::{AxisSample, check_axes};
+use spiralcam::dynamics::axis_checks::{AxisSample, check_axes};
 use spiralcam::job::Job;
-use spiralcam::machine::presets;
+use spiralcam::job::machine::presets;
 use spiralcam::plan::{Planner, Sinks};
 use std::hint::black_box;
 use std::ops::ControlFlow;
@@ -16,10 +16,10 @@ fn million(job: &str, revs: f64) -> Job {
     let mut job = Job::from_json(job).expect("job");
     let radius = job.part_radius_mm();
     job.strategy.feed_mm_per_rev = radius / revs;
-    job.strategy.sampling = spiralcam::spiral::Sampling::ConstantAngle {
+    job.strategy.sampling = spiralcam::job::Sampling::ConstantAngle {
         points_per_rev: (1e6 / revs) as u32,
     };
-    job.output.dialect = spiralcam::nc::Dialect::Iso;
+    job.output.dialect = spiralcam::job::Dialect::Iso;
     job
 }
 

@@ -5,11 +5,12 @@
 //! the paper 000 compound eye job (`crate/jobs/compound-eye-paper000.json`, planned as it is).
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use spiralcam::dynamics::path_signal::PathSignal;
+use spiralcam::dynamics::spectrum::{amplitude_spectrum, instantaneous_frequency};
+use spiralcam::dynamics::split::{SplitLimits, split};
 use spiralcam::job::Job;
-use spiralcam::path_signal::PathSignal;
+use spiralcam::job::SplitSpec;
 use spiralcam::plan::Planner;
-use spiralcam::spectrum::{amplitude_spectrum, instantaneous_frequency};
-use spiralcam::split::{SplitLimits, SplitSpec, split};
 use std::f64::consts::TAU;
 use std::hint::black_box;
 

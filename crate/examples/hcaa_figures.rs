@@ -6,11 +6,11 @@
 //! multiplies the part diameter, to get figures quickly on a smaller part; `job` (a part of the
 //! file name, e.g. `lens`) limits the run to one job.
 
-use spiralcam::hcaa;
+use spiralcam::analysis::linearization::analyse;
 use spiralcam::job::Job;
-use spiralcam::linearization::analyse;
+use spiralcam::job::Sampling;
+use spiralcam::path::hcaa;
 use spiralcam::plan::{Planner, Sinks};
-use spiralcam::spiral::Sampling;
 use std::ops::ControlFlow;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -41,7 +41,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let p = Planner::new(&job)?;
             let bands = hcaa::bands(
                 p.surface(),
-                p.nose(),
+                &|rho, theta| p.tip_height(rho, theta),
                 job.outer_radius_mm(),
                 job.strategy.feed_mm_per_rev,
                 tol * 1e-3,

@@ -16,7 +16,7 @@
 //! 0.0173 mm offset by (0.00317, 0.00212) mm from the origin, inside the part (ρ ≤ 5 mm):
 //! 262 045 points, none on a data point or data line.
 
-use spiralcam::data_file::DataFile;
+use spiralcam::surface::DataFile;
 use spiralcam::surface::scattered::interpolate::data::{Grid, Samples};
 use spiralcam::surface::scattered::interpolate::rbf::{Polynomial, RbfSettings, condition_number};
 use spiralcam::surface::scattered::{Method, Scattered, ScatteredSpec};

@@ -3,7 +3,7 @@
 //! `f32` arrays ready for GPU buffers. Decimation is for display only; the NC and CSV always
 //! carry every point.
 
-use crate::plan::PathPoint;
+use crate::path::PathPoint;
 use crate::surface::{Surface, UndefinedError};
 use std::f64::consts::TAU;
 

@@ -1,38 +1,40 @@
 //! spiralcam: spiral tool paths for ultraprecision single-point diamond turning of freeform
 //! optical surfaces with a slow slide servo (SSS) or a fast tool servo (FTS).
 //!
-//! The pipeline (DESIGN.md): a [`job::Job`] names a [`surface::Surface`], the
-//! [`spiral`] sampler lays (ρ, θ) points from the outer radius to the centre, the
-//! [`compensate`] stage lifts each point so that the round tool nose touches the surface without
-//! cutting into it (paper 003 eqs 17–24, solved as a maximum), [`reach`] reports where the nose
-//! cannot reach the surface, and the [`nc`] writers turn the points into NC programs and CSV.
-//! [`plan`] runs the whole chain as a stream, so memory does not grow with the point count.
-//! With machine limits or a split, [`dynamics`] first analyses the planned path in memory
-//! ([`spectrum`], [`split`], [`axis_checks`]; paper 000's FFT/Hilbert splitting) and the
-//! program is written with the slide's Z and the fast tool servo's W.
+//! The crate's folders are its layers; each uses only the ones listed below it, never one
+//! above, and a test (`crate/tests/layers.rs`) keeps it so. Read it top-down:
+//!
+//! | layer | what it holds |
+//! |---|---|
+//! | [`plan`] | the pipeline: a job through every layer into NC, CSV and the report, as a stream |
+//! | [`report`], [`display`] | the plan's report and checks; what the page draws |
+//! | [`analysis`], [`dynamics`] | accuracy (linearization, predicted form, power map); machine dynamics (spectrum, split, axis checks) |
+//! | [`nc`] | the NC writers (three dialects), the CSV and the servo's table |
+//! | [`tool`] | nose compensation (one-way, two-way), concave zones, tool geometry, the tool path |
+//! | [`path`] | the path's points and places; the spiral samplers (constant angle/arc, HCAA, space spiral) |
+//! | [`job`] | the job document: spec types, defaults, validation |
+//! | [`surface`] | every surface family with sag, gradient and Hessian; the data files they read |
+//! | [`field`], [`progress`], [`parallel`], [`raster`] | helpers: field errors, progress, threads, maps |
+//!
+//! A job's way through them: JSON → [`job::Job`] → [`surface::Surface`] → the spiral
+//! ([`path::spiral`], [`path::hcaa`], [`path::space_spiral`]) → the nose compensation
+//! ([`tool::NoseCompensator`], paper 003 eqs 17–24 solved as a maximum) giving the
+//! [`tool::ToolPath`] → with a split or machine limits the [`dynamics`] (paper 000's FFT/Hilbert
+//! splitting) → the [`nc`] writers → files; [`analysis`] reads the same tool path for the
+//! accuracy report. [`plan::Planner`] runs the chain as a stream, so memory does not grow with
+//! the point count.
 
 pub mod analysis;
-pub mod axis_checks;
-pub mod compensate;
-pub mod data_file;
 pub mod display;
 pub mod dynamics;
 pub mod field;
-pub mod hcaa;
 pub mod job;
-pub mod linearization;
-pub mod machine;
 pub mod nc;
-pub mod path_signal;
+pub mod parallel;
+pub mod path;
 pub mod plan;
-pub mod power_map;
-pub mod predicted_form;
+pub mod progress;
 pub mod raster;
-pub mod reach;
 pub mod report;
-pub mod space_spiral;
-pub mod spectrum;
-pub mod spiral;
-pub mod split;
 pub mod surface;
-pub mod tool_geometry;
+pub mod tool;

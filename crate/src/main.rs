@@ -7,18 +7,20 @@
 //! ```
 //!
 //! `plan` streams the path into the files asked for (each written to `FILE.partial` and renamed
-//! when complete, so a failed run never leaves a truncated program) and prints the report as
-//! JSON on standard output unless `--report` names a file. `analyse` plans the job and reports its
-//! accuracy ([`spiralcam::analysis`]: linearization error, predicted form, tool angles) as JSON, and with
-//! `--maps` writes its maps as `PREFIX-linearization.csv`, `PREFIX-form.csv` (`x_mm,y_mm,error_um`)
-//! and `PREFIX-clearance.csv` (`x_mm,y_mm,required_clearance_deg`). `sag` prints sag, gradient and second
-//! derivatives of the job's surface at each `x_mm,y_mm` row of a CSV file. Data files a job
-//! names by path (scattered points, STEP files) are read relative to the job file.
+//! when complete, so a failed run never leaves a truncated program) and prints the report as JSON
+//! on standard output unless `--report` names a file. `analyse` plans the job and reports its
+//! accuracy ([`spiralcam::analysis`]: linearization error, predicted form, tool angles) as JSON,
+//! and with `--maps` writes its maps as `PREFIX-linearization.csv`, `PREFIX-form.csv`
+//! (`x_mm,y_mm,error_um`) and `PREFIX-clearance.csv` (`x_mm,y_mm,required_clearance_deg`). `sag`
+//! prints sag, gradient and second derivatives of the job's surface at each `x_mm,y_mm` row of a
+//! CSV file. Data files a job names by path (scattered points, STEP files) are read relative to the
+//! job file.
 
 use spiralcam::analysis::Analysis;
 use spiralcam::display::DisplayPath;
 use spiralcam::job::Job;
-use spiralcam::plan::{Planner, Progress, Sinks};
+use spiralcam::plan::{Planner, Sinks};
+use spiralcam::progress::Progress;
 use spiralcam::raster::Raster;
 use std::fs::File;
 use std::io::{BufWriter, IsTerminal, Write};

@@ -1,42 +1,24 @@
-//! The planner: job → surface → spiral ([`spiral`]) → one-way compensation → NC, CSV and
-//! report, as one stream. [`Planner::points`] yields the path one point at a time;
-//! [`Planner::run`] compensates batches of 16 384 points on all cores (natively; one thread in
-//! the browser) and hands them in order to every sink, so memory stays flat whatever the point
-//! count and the output does not depend on the number of threads; only the display copy
+//! The pipeline at the top of the layers: a job's [`ToolPath`] streamed through the writers
+//! ([`crate::nc`]: NC program, CSV, the servo's table) and the report's running figures, after
+//! the machine dynamics ([`crate::dynamics`]) where the job asks for them. Points are
+//! compensated in batches of 16 384 on all cores (natively; one thread in the browser) and
+//! handed in order to every sink, so memory stays flat whatever the point count and the output
+//! does not depend on the number of threads; only the display copy
 //! ([`crate::display::DisplayPath`]) keeps points, decimated to a fixed budget.
 
-use crate::compensate::{Compensation, NoseCompensator};
 use crate::display::DisplayPath;
+use crate::dynamics::{Dynamics, DynamicsError};
 use crate::field::FieldError;
-use crate::job::{Job, JobError, StrategySpec};
+use crate::job::{Compensation, Job, JobError, Sampling, SplitSpec};
 use crate::nc::{CsvWriter, FtsTableWriter, Header, NcError, NcWriter};
-use crate::reach::{self, Reach};
+use crate::path::{PathError, hcaa};
+use crate::progress::Progress;
 use crate::report::{Report, Stats};
-use crate::spiral::{Sampling, Spiral, SpiralPoint};
-use crate::split::SplitSpec;
-use crate::surface::{Surface, UndefinedError};
+use crate::surface::UndefinedError;
+use crate::tool::ToolPath;
 use std::io::Write;
-use std::ops::ControlFlow;
+use std::ops::{ControlFlow, Deref};
 use thiserror::Error;
-
-/// One point of the tool path.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct PathPoint {
-    /// Position along the path, from 0.
-    pub index: u64,
-    /// Radius of the tool (X on the spiral), mm.
-    pub rho: f64,
-    /// Polar angle on the part, radians, cumulative.
-    pub theta: f64,
-    /// Commanded Z: the tool tip (nose centre − r), mm.
-    pub z: f64,
-    /// Where the nose touches the surface (x, y, z), mm.
-    pub contact: [f64; 3],
-    /// Nose angle of the contact, radians.
-    pub contact_angle: f64,
-    /// The contact is at an end of the nose arc (see [`crate::compensate::Contact`]).
-    pub at_arc_end: bool,
-}
 
 /// Why a plan failed.
 #[derive(Debug, Error)]
@@ -79,7 +61,7 @@ pub enum PlanError {
     Cancelled,
     /// The path cannot be split between the slide and the servo.
     #[error(transparent)]
-    Split(#[from] crate::split::SplitError),
+    Split(#[from] crate::dynamics::split::SplitError),
     /// The slide heights given for a split path ended before the path (at this point).
     #[error("the split path has no slide height for point {0}: it was split from another plan")]
     SplitLength(u64),
@@ -91,13 +73,23 @@ impl From<FieldError> for PlanError {
     }
 }
 
-/// Progress of a run.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Progress {
-    /// Points done.
-    pub done: u64,
-    /// Points expected (exact for constant angle sampling).
-    pub total: u64,
+impl From<PathError> for PlanError {
+    fn from(e: PathError) -> Self {
+        match e {
+            PathError::Job(e) => PlanError::Job(e),
+            PathError::Surface(e) => PlanError::Surface(e),
+            PathError::Cancelled => PlanError::Cancelled,
+        }
+    }
+}
+
+impl From<DynamicsError> for PlanError {
+    fn from(e: DynamicsError) -> Self {
+        match e {
+            DynamicsError::Path(e) => e.into(),
+            DynamicsError::Split(e) => PlanError::Split(e),
+        }
+    }
 }
 
 /// Where a run's output goes; each is optional.
@@ -116,189 +108,37 @@ pub struct Sinks<'a> {
     pub fts_table: Option<&'a mut dyn Write>,
 }
 
-/// How often the progress callback is called, in points.
-pub const PROGRESS_EVERY: u64 = 65_536;
-
-/// Points compensated per batch before they are written: bounds the memory of a run.
-const BATCH: usize = 16_384;
-
-/// Threads for parallel work (a batch to compensate, the circles of [`crate::hcaa::bands`]):
-/// every core natively, one in the browser.
-pub(crate) fn workers() -> usize {
-    if cfg!(target_arch = "wasm32") {
-        1
-    } else {
-        std::thread::available_parallelism().map_or(1, |n| n.get())
-    }
-}
-
-/// The spiral of a strategy on `surface`, by the builder of its sampling: [`Spiral::new`] for
-/// constant angle and constant arc, [`crate::hcaa::spiral`] for `hcaa` and `adaptive`,
-/// [`crate::space_spiral::spiral`] for `space_spiral`. Field errors are named from `strategy`.
-pub fn spiral(
-    outer_radius_mm: f64,
-    strategy: &StrategySpec,
-    surface: &dyn Surface,
-    nose: &NoseCompensator,
-) -> Result<Spiral, PlanError> {
-    let st = strategy;
-    let within = |e: FieldError| PlanError::from(e.within("strategy"));
-    match st.sampling {
-        Sampling::ConstantAngle { .. } | Sampling::ConstantArc { .. } => Spiral::new(
-            outer_radius_mm,
-            st.feed_mm_per_rev,
-            &st.sampling,
-            st.direction,
-            st.start_angle_deg,
-        )
-        .map_err(within),
-        Sampling::Hcaa { .. } | Sampling::Adaptive { .. } => {
-            crate::hcaa::spiral(outer_radius_mm, st, surface, nose)
-        }
-        Sampling::SpaceSpiral {
-            points_per_rev,
-            base_spans,
-        } => crate::space_spiral::spiral(outer_radius_mm, st, surface, points_per_rev, base_spans)
-            .map_err(within),
-    }
-}
-
-/// A checked job, ready to plan.
+/// A checked job, ready to plan: its [`ToolPath`] (which it dereferences to) and the
+/// pipeline that writes it.
 #[derive(Debug)]
 pub struct Planner {
-    job: Job,
-    surface: Box<dyn Surface>,
-    spiral: Spiral,
-    nose: NoseCompensator,
+    path: ToolPath,
+}
+
+impl Deref for Planner {
+    type Target = ToolPath;
+
+    fn deref(&self) -> &ToolPath {
+        &self.path
+    }
 }
 
 impl Planner {
     /// Validates the job and builds its stages.
     pub fn new(job: &Job) -> Result<Self, PlanError> {
-        job.validate()?;
-        let surface = job.build_surface()?;
-        // The material ends at the part edge, wherever the spiral starts.
-        let nose =
-            NoseCompensator::new(&job.tool, surface.feature_length_mm(), job.part_radius_mm())
-                .map_err(|e| e.within("tool"))?;
-        let spiral = spiral(
-            job.outer_radius_mm(),
-            &job.strategy,
-            surface.as_ref(),
-            &nose,
-        )?;
         Ok(Self {
-            job: job.clone(),
-            surface,
-            spiral,
-            nose,
+            path: ToolPath::new(job)?,
         })
     }
 
-    /// The job.
-    pub fn job(&self) -> &Job {
-        &self.job
-    }
-
-    /// The surface.
-    pub fn surface(&self) -> &dyn Surface {
-        self.surface.as_ref()
-    }
-
-    /// The spiral.
-    pub fn spiral(&self) -> &Spiral {
-        &self.spiral
-    }
-
-    /// The compensator.
-    pub fn nose(&self) -> &NoseCompensator {
-        &self.nose
-    }
-
-    /// The compensated path, streamed.
-    pub fn points(&self) -> impl Iterator<Item = Result<PathPoint, UndefinedError>> + '_ {
-        self.spiral
-            .points()
-            .enumerate()
-            .map(move |(i, sp)| Ok(self.path_point(i as u64, sp)?.0))
-    }
-
-    /// The compensated path point of the `index`-th spiral point, and whether the two-way
-    /// offset folds there (a loop; always false one-way). Two-way, `rho` and `theta` are the
-    /// nose centre's X and C ([`NoseCompensator::compensate_two_way`]).
-    fn path_point(&self, index: u64, sp: SpiralPoint) -> Result<(PathPoint, bool), UndefinedError> {
-        let (s, c) = sp.theta.sin_cos();
-        if self.job.strategy.compensation == Compensation::TwoWay {
-            let t = self
-                .nose
-                .compensate_two_way(self.surface.as_ref(), sp.rho, c, s)?;
-            return Ok((
-                PathPoint {
-                    index,
-                    rho: t.x,
-                    theta: sp.theta + t.c_offset,
-                    z: t.z_tip,
-                    contact: t.contact,
-                    contact_angle: t.angle,
-                    at_arc_end: t.at_arc_end,
-                },
-                t.folds,
-            ));
-        }
-        let contact = self.nose.compensate(self.surface.as_ref(), sp.rho, c, s)?;
-        Ok((
-            PathPoint {
-                index,
-                rho: sp.rho,
-                theta: sp.theta,
-                z: contact.z_tip,
-                contact: [contact.rho * c, contact.rho * s, contact.z],
-                contact_angle: contact.angle,
-                at_arc_end: contact.at_arc_end,
-            },
-            false,
-        ))
-    }
-
-    /// Compensates a batch of spiral points starting at path index `first` into `out`, in
-    /// order, split over the machine's cores (one thread on wasm32). Each point is computed
-    /// alone, so the result is the same whatever the split; the first error in path order wins.
-    fn compensate_batch(
-        &self,
-        first: u64,
-        input: &[SpiralPoint],
-        out: &mut Vec<(PathPoint, bool)>,
-    ) -> Result<(), UndefinedError> {
-        out.clear();
-        out.resize(input.len(), (PathPoint::default(), false));
-        let chunk = input.len().div_ceil(workers()).max(1);
-        let fill = |k: usize,
-                    points: &[SpiralPoint],
-                    slots: &mut [(PathPoint, bool)]|
-         -> Result<(), UndefinedError> {
-            for (j, (sp, slot)) in points.iter().zip(slots).enumerate() {
-                *slot = self.path_point(first + (k * chunk + j) as u64, *sp)?;
-            }
-            Ok(())
-        };
-        let mut parts = input.chunks(chunk).zip(out.chunks_mut(chunk)).enumerate();
-        if chunk == input.len() {
-            return parts.try_for_each(|(k, (p, o))| fill(k, p, o));
-        }
-        std::thread::scope(|scope| {
-            let fill = &fill;
-            let handles: Vec<_> = parts
-                .map(|(k, (p, o))| scope.spawn(move || fill(k, p, o)))
-                .collect();
-            handles
-                .into_iter()
-                .try_for_each(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-        })
+    /// The tool path.
+    pub fn path(&self) -> &ToolPath {
+        &self.path
     }
 
     /// The header comments of the NC program.
     pub fn header(&self) -> Header {
-        let j = &self.job;
+        let j = self.job();
         let conv = j.output.conventions();
         let sampling = match j.strategy.sampling {
             Sampling::ConstantAngle { points_per_rev } => {
@@ -313,7 +153,7 @@ impl Planner {
                 )
             }
             Sampling::Hcaa { pv_tolerance_um } | Sampling::Adaptive { pv_tolerance_um } => {
-                crate::hcaa::describe(&j.strategy.sampling, pv_tolerance_um, self.spiral.zones())
+                hcaa::describe(&j.strategy.sampling, pv_tolerance_um, self.spiral().zones())
             }
             Sampling::SpaceSpiral {
                 points_per_rev,
@@ -337,11 +177,11 @@ impl Planner {
                     j.output.style().name
                 ),
                 format!("job {}", j.name),
-                format!("surface: {}", self.surface.describe()),
+                format!("surface: {}", self.surface().describe()),
                 format!(
                     "part diameter {} mm; spiral from radius {:.6} mm to the centre",
                     j.part.diameter_mm,
-                    self.spiral.start_radius_mm()
+                    self.spiral().start_radius_mm()
                 ),
                 format!(
                     "tool nose radius {} mm, included angle {} deg; {compensation}; Z is the tool tip = nose centre - r",
@@ -353,7 +193,7 @@ impl Planner {
                     sampling,
                     j.strategy.direction,
                     j.strategy.start_angle_deg,
-                    self.spiral.revolutions()
+                    self.spiral().revolutions()
                 )
                 .to_lowercase(),
                 format!("spindle {} rpm", j.machine.spindle_rpm),
@@ -387,48 +227,6 @@ impl Planner {
         header
     }
 
-    /// Zones where the nose cannot reach the surface (see [`crate::reach`]).
-    pub fn concave_zones(&self) -> Result<Reach, UndefinedError> {
-        reach::concave_zones(
-            self.surface.as_ref(),
-            &self.nose,
-            self.spiral.start_radius_mm(),
-        )
-    }
-
-    /// Plans every point in order, compensating batches of 16 384 points on every core, and
-    /// hands each to `visit` with whether the two-way offset folds there; `progress` is called
-    /// every [`PROGRESS_EVERY`] points and at the end (`Break` cancels). Returns the count.
-    pub fn for_each_point(
-        &self,
-        progress: &mut dyn FnMut(Progress) -> ControlFlow<()>,
-        visit: &mut dyn FnMut(&PathPoint, bool) -> Result<(), PlanError>,
-    ) -> Result<u64, PlanError> {
-        let total = self.spiral.point_count_hint();
-        let mut done = 0u64;
-        let mut spiral = self.spiral.points();
-        let (mut input, mut output) = (Vec::with_capacity(BATCH), Vec::with_capacity(BATCH));
-        loop {
-            input.clear();
-            input.extend(spiral.by_ref().take(BATCH));
-            if input.is_empty() {
-                break;
-            }
-            self.compensate_batch(done, &input, &mut output)?;
-            for (p, folds) in &output {
-                visit(p, *folds)?;
-                done += 1;
-                if done.is_multiple_of(PROGRESS_EVERY)
-                    && progress(Progress { done, total }).is_break()
-                {
-                    return Err(PlanError::Cancelled);
-                }
-            }
-        }
-        let _ = progress(Progress { done, total: done });
-        Ok(done)
-    }
-
     /// Plans the whole path as [`Self::run`] does, after the machine dynamics when the job asks
     /// for them ([`crate::dynamics::wanted`]): a first pass plans the path into memory,
     /// analyses and splits it, the second writes it with the slide's share and the servo's
@@ -438,10 +236,10 @@ impl Planner {
         sinks: Sinks,
         progress: &mut dyn FnMut(Progress) -> ControlFlow<()>,
     ) -> Result<Report, PlanError> {
-        if !crate::dynamics::wanted(&self.job) {
+        if !crate::dynamics::wanted(self.job()) {
             return self.run(sinks, progress);
         }
-        let dynamics = crate::dynamics::Dynamics::run(self, progress)?;
+        let dynamics = Dynamics::run(&self.path, progress)?;
         let Sinks {
             nc,
             csv,
@@ -466,8 +264,8 @@ impl Planner {
 
     /// Plans the whole path into the sinks and returns the report. The NC program is always
     /// generated (into a byte counter when no sink is given) so the report can state its size.
-    /// `progress` is called every [`PROGRESS_EVERY`] points and at the end; returning
-    /// `ControlFlow::Break` cancels.
+    /// `progress` is called every [`crate::progress::PROGRESS_EVERY`] points and at the end;
+    /// returning `ControlFlow::Break` cancels.
     pub fn run(
         &self,
         sinks: Sinks,
@@ -488,8 +286,8 @@ impl Planner {
             Some(w) => w,
             None => &mut counter,
         };
-        let mut nc = NcWriter::new(nc_out, &self.job.output, &header)?;
-        let conv = self.job.output.conventions();
+        let mut nc = NcWriter::new(nc_out, &self.job().output, &header)?;
+        let conv = self.job().output.conventions();
         let mut csv = sinks.csv.map(|w| CsvWriter::new(w, conv)).transpose()?;
         let z_slide = sinks.z_slide;
         let mut fts_table = match z_slide {
@@ -501,7 +299,7 @@ impl Planner {
         };
         let mut display = sinks.display;
         let mut stats = Stats::default();
-        self.for_each_point(progress, &mut |p, folds| {
+        self.path.for_each_point(progress, &mut |p, folds| {
             match z_slide.map(|z| z.get(p.index as usize)) {
                 None => nc.point(p)?,
                 Some(Some(&z)) => {
@@ -531,7 +329,7 @@ impl Planner {
         if let Some(t) = fts_table {
             t.finish()?;
         }
-        let zones = self.concave_zones()?;
-        Ok(Report::new(self, &stats, nc_bytes, zones))
+        let zones = self.path.concave_zones()?;
+        Ok(Report::new(&self.path, &stats, nc_bytes, zones))
     }
 }

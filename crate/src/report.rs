@@ -13,11 +13,12 @@
 //! (possibly unequal) C steps, `2·(ΔX₂/ΔC₂ − ΔX₁/ΔC₁)/(ΔC₁ + ΔC₂)` times ω², the spindle's
 //! angular speed at the job's rpm, placed at the middle point. `two_way_loops` counts the runs
 //! of consecutive points where the two-way offset folds (a path loop, see
-//! [`crate::compensate`]), `two_way_loop_points` their points and `first_two_way_loop_at` the
+//! [`crate::tool`]), `two_way_loop_points` their points and `first_two_way_loop_at` the
 //! first; always 0 (and null) for one-way, which cannot loop.
 
-use crate::plan::{PathPoint, Planner};
-use crate::reach::{ConcaveZone, Reach};
+use crate::path::{Location, PathPoint};
+use crate::tool::ToolPath;
+use crate::tool::reach::{ConcaveZone, Reach};
 use serde::Serialize;
 use std::f64::consts::TAU;
 
@@ -115,25 +116,6 @@ impl Stats {
     }
 }
 
-/// Where on the part: polar radius and angle.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Location {
-    /// Radius, mm.
-    pub rho_mm: f64,
-    /// Polar angle, degrees in [0, 360).
-    pub theta_deg: f64,
-}
-
-impl Location {
-    /// From ρ and a cumulative θ in radians.
-    pub fn new(rho: f64, theta: f64) -> Self {
-        Self {
-            rho_mm: rho,
-            theta_deg: theta.to_degrees().rem_euclid(360.0),
-        }
-    }
-}
-
 /// What a plan produced and what it found.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Report {
@@ -191,9 +173,9 @@ pub struct Report {
 
 impl Report {
     /// Assembles the report of a finished run.
-    pub fn new(planner: &Planner, stats: &Stats, nc_bytes: u64, reach: Reach) -> Self {
+    pub fn new(tool_path: &ToolPath, stats: &Stats, nc_bytes: u64, reach: Reach) -> Self {
         let concave_zones = reach.zones;
-        let job = planner.job();
+        let job = tool_path.job();
         let mut warnings = Vec::new();
         if let Some((rho, theta)) = stats.first_arc_end {
             let at = Location::new(rho, theta);
@@ -224,7 +206,7 @@ impl Report {
                 stats.loops, stats.loop_points, job.tool.nose_radius_mm, at.rho_mm, at.theta_deg
             ));
         }
-        let start = planner.spiral().start_radius_mm();
+        let start = tool_path.spiral().start_radius_mm();
         let omega = job.machine.spindle_rpm / 60.0 * TAU;
         if start > job.outer_radius_mm() + 1e-12 {
             warnings.push(format!(
@@ -235,10 +217,10 @@ impl Report {
         }
         Self {
             job: job.name.clone(),
-            surface: planner.surface().describe(),
+            surface: tool_path.surface().describe(),
             dialect: job.output.style().name.to_string(),
             points: stats.points,
-            revolutions: planner.spiral().revolutions(),
+            revolutions: tool_path.spiral().revolutions(),
             start_radius_mm: start,
             nc_bytes,
             cycle_time_s: stats.total_angle() / TAU / job.machine.spindle_rpm * 60.0,

@@ -232,8 +232,8 @@ fn plan_writes_the_program_the_table_and_the_report() {
 #[test]
 fn plan_writes_the_split_program_and_the_servo_table() {
     let mut job = Job::from_json(JOB).unwrap();
-    job.machine = spiralcam::machine::presets()[2].machine(job.machine.spindle_rpm);
-    job.strategy.split = Some(spiralcam::split::SplitSpec::Auto);
+    job.machine = spiralcam::job::machine::presets()[2].machine(job.machine.spindle_rpm);
+    job.strategy.split = Some(spiralcam::job::SplitSpec::Auto);
     let dir = Scratch::new("split");
     let job_path = dir.write("job.json", &job.to_json());
     let (nc, fts, report) = (dir.path("out.nc"), dir.path("fts.csv"), dir.path("r.json"));

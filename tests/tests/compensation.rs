@@ -22,8 +22,9 @@ use common::{
     random_asphere, random_sinusoid, random_xy_polynomial,
 };
 use proptest::prelude::*;
-use spiralcam::compensate::{NoseCompensator, ToolSpec};
+use spiralcam::job::ToolSpec;
 use spiralcam::surface::{Surface, SurfaceSpec};
+use spiralcam::tool::NoseCompensator;
 use std::f64::consts::TAU;
 
 /// Dense samples along the arc (see the module docs).

@@ -1,4 +1,4 @@
-//! HCAA and adaptive sampling (`spiralcam::hcaa`, paper 000 "HCAA method") through the public
+//! HCAA and adaptive sampling (`spiralcam::path::hcaa`, paper 000 "HCAA method") through the public
 //! API.
 //!
 //! - Closed forms: on a sphere with a sharp tool the height depends on ρ alone and along the
@@ -19,11 +19,12 @@
 
 mod common;
 
-use spiralcam::hcaa::{self, SAFETY};
+use spiralcam::analysis::linearization::analyse;
 use spiralcam::job::Job;
-use spiralcam::linearization::analyse;
+use spiralcam::job::{Direction, Sampling};
+use spiralcam::path::hcaa::{self, SAFETY};
+use spiralcam::path::spiral::{Spiral, Step, Zone};
 use spiralcam::plan::Planner;
-use spiralcam::spiral::{Direction, Sampling, Spiral, Step, Zone};
 use std::f64::consts::{PI, TAU};
 
 fn job(surface: &str, diameter: f64, nose: f64, feed: f64, sampling: &str) -> Job {
@@ -41,7 +42,7 @@ fn bands_of(j: &Job, tol_um: f64) -> hcaa::Bands {
     let p = Planner::new(&j).unwrap();
     hcaa::bands(
         p.surface(),
-        p.nose(),
+        &|rho, theta| p.tip_height(rho, theta),
         j.outer_radius_mm(),
         j.strategy.feed_mm_per_rev,
         tol_um * 1e-3,

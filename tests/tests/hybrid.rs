@@ -10,11 +10,12 @@
 mod common;
 
 use common::example_job;
+use spiralcam::dynamics::split::{Limit, Verdict};
 use spiralcam::job::Job;
-use spiralcam::machine::presets;
+use spiralcam::job::SplitSpec;
+use spiralcam::job::machine::presets;
 use spiralcam::plan::{Planner, Sinks};
 use spiralcam::report::Report;
-use spiralcam::split::{Limit, SplitSpec, Verdict};
 use std::ops::ControlFlow;
 
 /// Plans `job` with its dynamics; returns the report, the program and the servo's table.
@@ -38,7 +39,7 @@ fn plan(job: &Job) -> (Report, String, String) {
 fn grid_fts() -> Job {
     let mut job = example_job("sinusoid-grid-fts.json");
     job.strategy.feed_mm_per_rev = 0.02;
-    job.strategy.sampling = spiralcam::spiral::Sampling::ConstantAngle {
+    job.strategy.sampling = spiralcam::job::Sampling::ConstantAngle {
         points_per_rev: 512,
     };
     job
@@ -254,10 +255,10 @@ fn a_split_the_machine_cannot_make_is_refused_naming_the_field() {
 #[test]
 fn the_compound_eye_splits_its_two_frequencies_onto_the_right_axes() {
     use spiralcam::dynamics::Dynamics;
-    use spiralcam::path_signal::PathSignal;
-    use spiralcam::spectrum::amplitude_spectrum;
+    use spiralcam::dynamics::path_signal::PathSignal;
+    use spiralcam::dynamics::spectrum::amplitude_spectrum;
     // The whole spectrum, undecimated, of one channel along the path.
-    let channel_of = |points: &[spiralcam::plan::PathPoint], v: &Vec<f64>| {
+    let channel_of = |points: &[spiralcam::path::PathPoint], v: &Vec<f64>| {
         let mut s = PathSignal::from_points(points.iter().copied());
         s.z_mm.clone_from(v);
         amplitude_spectrum(&s, 60.98, 1 << 20)
@@ -265,7 +266,7 @@ fn the_compound_eye_splits_its_two_frequencies_onto_the_right_axes() {
     let mut job = example_job("compound-eye-paper000.json");
     job.machine = presets()[1].machine(60.98);
     job.strategy.feed_mm_per_rev = 0.05;
-    job.strategy.sampling = spiralcam::spiral::Sampling::ConstantAngle {
+    job.strategy.sampling = spiralcam::job::Sampling::ConstantAngle {
         points_per_rev: 512,
     };
     job.strategy.split = Some(SplitSpec::LowPass { cutoff_hz: 20.0 });
@@ -274,7 +275,7 @@ fn the_compound_eye_splits_its_two_frequencies_onto_the_right_axes() {
     let d = Dynamics::of_points(&job, &points).unwrap();
     let hz = |cpr: f64| cpr * 60.98 / 60.0;
     // The largest bin within 0.3 Hz (the same bins in every channel: same scalloping).
-    let peak_near = |spectrum: &spiralcam::spectrum::Spectrum, f: f64| {
+    let peak_near = |spectrum: &spiralcam::dynamics::spectrum::Spectrum, f: f64| {
         spectrum
             .freq_hz
             .iter()

@@ -1,4 +1,4 @@
-//! Cutting linearization error (`spiralcam::linearization`, paper 000): the error
+//! Cutting linearization error (`spiralcam::analysis::linearization`, paper 000): the error
 //! `e(s) = Z_lin(s) − z*(s)` between the linear move of the machine and the compensated tool
 //! height along each segment.
 //!
@@ -17,14 +17,14 @@
 //!   test's e at the reported s equals it within 1e-14 mm. The same check runs on a wavy
 //!   sinusoid (several extremes of each sign per segment) and on a lens array, whose rims (and,
 //!   with a round nose, the contact's jumps between lenslets) are kinks of e.
-//! - Closed forms, to 1e-12 mm (rounding of sags of a few mm; the differences seen are below
-//!   1e-15 mm): on a paraboloid with a sharp tool every segment's error is the parabola
-//!   `Δρ²/(2R)·s(1 − s)` (z* depends on ρ alone, linear in s); on a concave sphere with a round
-//!   tool the nose centre follows the sphere of radius R − r and the extreme lies where its slope
-//!   equals the chord's; on a tilted flat `z = t·x` with a sharp tool, a segment at constant
-//!   radius ρ centred on azimuth φ has `e(s) = t·ρ·[cos φ·(cos(Δθ/2) − cos(uΔθ))
-//!   − sin φ·(2u·sin(Δθ/2) − sin(uΔθ))]`, u = s − ½: at φ = 0 an overcut `t·ρ·(1 − cos(Δθ/2))`
-//!   at mid-segment, at φ = π the same undercut, at φ = π/2 both, at `u = ±acos(2 sin(Δθ/2)/Δθ)/Δθ`.
+//! - Closed forms, to 1e-12 mm (rounding of sags of a few mm; the differences seen are below 1e-15
+//!   mm): on a paraboloid with a sharp tool every segment's error is the parabola `Δρ²/(2R)·s(1 −
+//!   s)` (z* depends on ρ alone, linear in s); on a concave sphere with a round tool the nose
+//!   centre follows the sphere of radius R − r and the extreme lies where its slope equals the
+//!   chord's; on a tilted flat `z = t·x` with a sharp tool, a segment at constant radius ρ centred
+//!   on azimuth φ has `e(s) = t·ρ·[cos φ·(cos(Δθ/2) − cos(uΔθ)) − sin φ·(2u·sin(Δθ/2) −
+//!   sin(uΔθ))]`, u = s − ½: at φ = 0 an overcut `t·ρ·(1 − cos(Δθ/2))` at mid-segment, at φ = π the
+//!   same undercut, at φ = π/2 both, at `u = ±acos(2 sin(Δθ/2)/Δθ)/Δθ`.
 //! - Derivatives: de/ds and d²e/ds² from the envelope theorem against central differences of e
 //!   and of de/ds; the envelope theorem itself (∂z*/∂ρ_s = f_u and ∂z*/∂θ = ρ_c·f_v at the
 //!   contact) against central differences of the compensated height.
@@ -39,10 +39,11 @@ use common::{
     random_xy_polynomial,
 };
 use proptest::prelude::*;
-use spiralcam::linearization::{
+use spiralcam::analysis::linearization::{
     LinearizationCheck, SegmentError, analyse, error_at, segment_error,
 };
-use spiralcam::plan::{PathPoint, Planner};
+use spiralcam::path::PathPoint;
+use spiralcam::plan::Planner;
 use std::f64::consts::PI;
 
 /// Seed of this file's property tests.

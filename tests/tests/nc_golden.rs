@@ -5,8 +5,10 @@
 //! job is checked row by row against the plan.
 
 use spiralcam::job::Job;
-use spiralcam::nc::{Dialect, FeedMode, ascii_comment};
-use spiralcam::plan::{PathPoint, Planner, Sinks};
+use spiralcam::job::{Dialect, FeedMode};
+use spiralcam::nc::ascii_comment;
+use spiralcam::path::PathPoint;
+use spiralcam::plan::{Planner, Sinks};
 use std::collections::HashMap;
 use std::f64::consts::TAU;
 use std::ops::ControlFlow;
@@ -110,7 +112,7 @@ fn precitech_program_matches_its_golden_file() {
 
 #[test]
 fn the_golden_jobs_cover_dialects_samplings_and_options() {
-    use spiralcam::spiral::Sampling;
+    use spiralcam::job::Sampling;
     let jobs: Vec<Job> = ["golden-iso", "golden-moore", "golden-precitech"]
         .iter()
         .map(|n| planner(n).job().clone())

@@ -12,7 +12,7 @@ mod common;
 use common::{check_derivatives, check_planned_path, config, local, random_xy_polynomial};
 use proptest::prelude::*;
 use spiralcam::job::Job;
-use spiralcam::space_spiral::survey;
+use spiralcam::path::space_spiral::survey;
 use spiralcam::surface::{Line, Surface};
 
 /// A job around `surface` (JSON) on a part of radius `radius` with the axis at `at`.

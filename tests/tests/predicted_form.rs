@@ -1,4 +1,4 @@
-//! The predicted form (`spiralcam::predicted_form`) against closed forms and brute force.
+//! The predicted form (`spiralcam::analysis::predicted_form`) against closed forms and brute force.
 //!
 //! - **Cusp height on a flat.** Two nose arcs of radius r, f apart, at the same height cross
 //!   `r − √(r² − f²/4) = f²/(8r)·(1 + f²/(16r²) + …)` above their bottoms: the median and the
@@ -33,11 +33,12 @@ mod common;
 
 use common::config;
 use proptest::prelude::*;
-use spiralcam::job::Job;
-use spiralcam::plan::{PlanError, Planner};
-use spiralcam::predicted_form::{
+use spiralcam::analysis::predicted_form::{
     FormSettings, PredictedForm, SectionSample, predict, predict_section,
 };
+use spiralcam::job::Job;
+use spiralcam::path::PathError;
+use spiralcam::plan::Planner;
 use std::f64::consts::TAU;
 
 /// Seed of this file's property tests.
@@ -251,8 +252,8 @@ fn sections_equal_the_lowest_of_all_arcs_by_brute_force() {
 #[test]
 fn bad_settings_and_jobs_name_their_field() {
     let p = planner(FLAT, 0.05, CONSTANT_ANGLE);
-    let field = |e: PlanError| match e {
-        PlanError::Job(spiralcam::job::JobError::Field(e)) => e.field,
+    let field = |e: PathError| match e {
+        PathError::Job(spiralcam::job::JobError::Field(e)) => e.field,
         e => panic!("{e}"),
     };
     for (angles, step) in [(7, None), (2, None), (360, Some(0.02)), (360, Some(-1.0))] {

@@ -12,11 +12,12 @@
 mod common;
 
 use common::{Closing, DEPTH_TOL, ORACLE_TOL};
-use spiralcam::compensate::{NoseCompensator, ToolSpec};
 use spiralcam::job::Job;
+use spiralcam::job::ToolSpec;
 use spiralcam::plan::Planner;
-use spiralcam::reach::{LISTED_DEPTH_MM, concave_zones};
 use spiralcam::surface::{Surface, SurfaceSpec};
+use spiralcam::tool::NoseCompensator;
+use spiralcam::tool::reach::{LISTED_DEPTH_MM, concave_zones};
 
 fn surface(json: &str, part_radius: f64) -> Box<dyn Surface> {
     let spec: SurfaceSpec = serde_json::from_str(json).expect("surface JSON");
@@ -107,7 +108,7 @@ fn a_convex_lens_array_reports_zones_as_deep_as_the_brute_force_closing() {
     let centres = convex_centres();
     // Three zones at different feet (e.g. the rim of the central lenslet, an outer foot on an
     // axis, a foot on a diagonal).
-    let mut checked: Vec<&spiralcam::reach::ConcaveZone> = Vec::new();
+    let mut checked: Vec<&spiralcam::tool::reach::ConcaveZone> = Vec::new();
     for z in &reach.zones {
         if checked.len() < 3
             && checked

@@ -13,7 +13,8 @@
 mod common;
 
 use spiralcam::job::Job;
-use spiralcam::plan::{PathPoint, Planner, Sinks};
+use spiralcam::path::PathPoint;
+use spiralcam::plan::{Planner, Sinks};
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -109,7 +110,7 @@ fn messages(stdout: &str) -> Vec<Vec<f64>> {
 /// Plans the job, writes its program and an instrumented copy, reads both back and checks them.
 fn check(job_json: &str) {
     let job = Job::from_json(job_json).expect("job JSON");
-    assert_eq!(job.output.dialect, spiralcam::nc::Dialect::Iso);
+    assert_eq!(job.output.dialect, spiralcam::job::Dialect::Iso);
     let planner = Planner::new(&job).expect("valid job");
     let pts: Vec<PathPoint> = planner.points().map(|p| p.unwrap()).collect();
     let mut nc = Vec::new();
@@ -287,7 +288,7 @@ fn a_split_program_reads_back_with_the_servo_word() {
     use spiralcam::nc::NcWriter;
     let mut job = common::example_job("tilted-flat.json");
     job.name = "split".into();
-    job.output = spiralcam::nc::OutputSpec {
+    job.output = spiralcam::job::OutputSpec {
         fts_word: Some("A".into()),
         ..Default::default()
     };

@@ -7,7 +7,7 @@
 mod common;
 
 use common::local;
-use spiralcam::space_spiral::{
+use spiralcam::path::space_spiral::{
     BaseFitOptions, BaseSurface, DEFAULT_ALPHA_LIM_DEG, pass_spacing, quasi_revolution,
     space_spiral, z_projection,
 };

@@ -9,7 +9,8 @@ mod common;
 
 use common::config;
 use proptest::prelude::*;
-use spiralcam::spiral::{Direction, Sampling, Spiral, SpiralPoint, arc_length};
+use spiralcam::job::{Direction, Sampling};
+use spiralcam::path::spiral::{Spiral, SpiralPoint, arc_length};
 use std::f64::consts::TAU;
 
 /// Seed of this file's property tests.

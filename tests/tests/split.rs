@@ -3,11 +3,12 @@
 //! flat that the slide cuts alone, a sine grid beyond the slide's bandwidth that needs the FTS,
 //! and `Z + W = z` on every path.
 
+use spiralcam::dynamics::path_signal::PathSignal;
+use spiralcam::dynamics::spectrum::{amplitude_spectrum, instantaneous_frequency};
+use spiralcam::dynamics::split::{Limit, Split, SplitLimits, Verdict, split};
 use spiralcam::job::Job;
-use spiralcam::path_signal::PathSignal;
+use spiralcam::job::SplitSpec;
 use spiralcam::plan::Planner;
-use spiralcam::spectrum::{amplitude_spectrum, instantaneous_frequency};
-use spiralcam::split::{Limit, Split, SplitLimits, SplitSpec, Verdict, split};
 use std::f64::consts::TAU;
 
 /// The planned path of a job given as JSON.

@@ -44,10 +44,11 @@ use common::{
     Closing, DEPTH_TOL, H, ORACLE_TOL, check_derivatives_within, check_planned_path, config, local,
 };
 use proptest::prelude::*;
-use spiralcam::compensate::{NoseCompensator, ToolSpec};
 use spiralcam::job::Job;
+use spiralcam::job::ToolSpec;
 use spiralcam::plan::Planner;
 use spiralcam::surface::{CompoundEye, CompoundEyeSpec, Line, PartDisc, Surface, SurfaceSpec};
+use spiralcam::tool::NoseCompensator;
 use std::f64::consts::PI;
 
 /// Seed of this file's property tests.

@@ -21,7 +21,7 @@ mod common;
 
 use common::{TOUCH, check_derivatives, check_gap, check_planned_path, config, dense_gap, local};
 use proptest::prelude::*;
-use spiralcam::power_map::{PowerMap, SurfacePower, principal_curvatures};
+use spiralcam::analysis::power_map::{PowerMap, SurfacePower};
 use spiralcam::surface::pal::{ContourSpec, Pal, PalSpec};
 use spiralcam::surface::{AsphereSpec, PartDisc, Surface, SurfaceSpec};
 use std::f64::consts::{PI, TAU};
@@ -310,7 +310,7 @@ proptest! {
         let (x, y) = (rho * phi.cos(), rho * phi.sin());
         let (a, b) = (local(s.as_ref(), x, y), local(s.as_ref(), x, -y));
         prop_assert_eq!(a.z, b.z);
-        prop_assert_eq!(principal_curvatures(&a), principal_curvatures(&b));
+        prop_assert_eq!(a.principal_curvatures(), b.principal_curvatures());
     }
 }
 
@@ -336,7 +336,8 @@ fn the_dense_check_detects_a_cut() {
     // The oracle itself: on the Table 1 lens, a nose centre placed by the compensator passes,
     // and the same centre lowered by 1 µm is reported as cutting, raised by 1 µm as not
     // touching.
-    use spiralcam::compensate::{NoseCompensator, ToolSpec};
+    use spiralcam::job::ToolSpec;
+    use spiralcam::tool::NoseCompensator;
     let s = build(&PalSpec::paper003(), 35.0);
     let tool = ToolSpec {
         nose_radius_mm: 0.8,

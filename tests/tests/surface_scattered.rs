@@ -9,9 +9,9 @@ mod common;
 
 use common::{NoseArc, TOUCH, check_gap, config, dense_gap, example_job, point_name};
 use proptest::prelude::*;
-use spiralcam::data_file::DataFile;
 use spiralcam::job::Job;
 use spiralcam::plan::Planner;
+use spiralcam::surface::DataFile;
 use spiralcam::surface::scattered::interpolate::data::{Grid, Samples};
 use spiralcam::surface::scattered::interpolate::rbf::{
     Distance, LocalRbf, Polynomial, RbfSettings,
@@ -730,8 +730,8 @@ fn the_gouge_check_detects_a_cut_at_a_jump() {
     let points = jittered(lenslet, 0.06, 0.75, 0.2, 21);
     let samples = Samples::from_points(&points).unwrap();
     let f = build(&spec(Method::FourPointMean), samples.clone());
-    let nose = spiralcam::compensate::NoseCompensator::new(
-        &spiralcam::compensate::ToolSpec::with_nose_radius(0.1),
+    let nose = spiralcam::tool::NoseCompensator::new(
+        &spiralcam::job::ToolSpec::with_nose_radius(0.1),
         f.feature_length_mm(),
         0.55,
     )

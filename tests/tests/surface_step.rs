@@ -14,8 +14,8 @@ mod nurbs_nets;
 
 use common::{check_planned_path, example_job, local};
 use nurbs_nets::{clamped, polynomial_net, sphere, sphere_cap};
-use spiralcam::data_file::DataFile;
 use spiralcam::plan::Planner;
+use spiralcam::surface::DataFile;
 use spiralcam::surface::step_face::{FaceChoice, StepUnits};
 use spiralcam::surface::{
     Nurbs, NurbsSpec, PartDisc, StepFace, StepFaceSpec, Surface, SurfaceSpec,

@@ -1,4 +1,4 @@
-//! Critical tool angles and holder tilt (`spiralcam::tool_geometry`, paper 000 "Optimization of
+//! Critical tool angles and holder tilt (`spiralcam::tool::geometry`, paper 000 "Optimization of
 //! tool geometry").
 //!
 //! - Tilted flat `z = t·x`: along the circle of radius ρ the slope along the motion is
@@ -21,8 +21,10 @@ mod common;
 
 use common::{config, path_points, planner_of};
 use proptest::prelude::*;
-use spiralcam::plan::{PathPoint, Planner};
-use spiralcam::tool_geometry::{PointAngles, ToolAngles, ToolGeometryCheck, check};
+use spiralcam::job::ToolAngles;
+use spiralcam::path::PathPoint;
+use spiralcam::plan::Planner;
+use spiralcam::tool::geometry::{PointAngles, ToolGeometryCheck, check};
 use std::f64::consts::TAU;
 
 /// Seed of this file's property tests.

@@ -23,7 +23,8 @@ mod common;
 
 use common::{TOUCH, dense_gap};
 use spiralcam::job::Job;
-use spiralcam::plan::{PathPoint, Planner, Sinks};
+use spiralcam::path::PathPoint;
+use spiralcam::plan::{Planner, Sinks};
 use spiralcam::report::Report;
 use std::f64::consts::TAU;
 use std::ops::ControlFlow;

@@ -12,10 +12,11 @@
 //! which is deterministic, so memory stays flat however many points the path has.
 
 use spiralcam::analysis::Analysis;
+use spiralcam::analysis::power_map::PowerMap;
 use spiralcam::display::{DisplayPath, SurfaceMesh};
 use spiralcam::job::Job;
-use spiralcam::plan::{Planner, Progress, Sinks};
-use spiralcam::power_map::PowerMap;
+use spiralcam::plan::{Planner, Sinks};
+use spiralcam::progress::Progress;
 use spiralcam::raster::Raster;
 use spiralcam::surface::{PartDisc, SurfaceSpec};
 use std::ops::ControlFlow;
@@ -178,12 +179,12 @@ pub fn csv_table(job: JsValue, progress: &js_sys::Function) -> Result<Vec<u8>, J
     })
 }
 
-/// The example machines (`spiralcam::machine::presets`) as JSON: a list of objects with `key`,
+/// The example machines (`spiralcam::job::machine::presets`) as JSON: a list of objects with `key`,
 /// `label`, `description`, `block_rate_hz`, `x_slide`, `z_slide` and `fts` (null: none), in the
 /// job's units, for the page's machine presets.
 #[wasm_bindgen]
 pub fn machine_presets() -> String {
-    serde_json::to_string(&spiralcam::machine::presets()).unwrap_or_default()
+    serde_json::to_string(&spiralcam::job::machine::presets()).unwrap_or_default()
 }
 
 /// The fast tool servo's table of a split `job` (`c_deg,x_mm,w_mm`), byte for byte what

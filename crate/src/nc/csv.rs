@@ -4,7 +4,7 @@
 
 use super::number::{push_fixed, push_scaled};
 use super::{Conventions, NcError};
-use crate::plan::PathPoint;
+use crate::path::PathPoint;
 use std::io::Write;
 
 /// The header row.

@@ -5,7 +5,7 @@
 
 use super::number::push_scaled;
 use super::{Conventions, NcError};
-use crate::plan::PathPoint;
+use crate::path::PathPoint;
 use std::io::Write;
 
 /// The header row.

@@ -3,8 +3,7 @@
 //! by digit. Negative zero prints as zero, so `-0.000000` never appears; non-finite values and
 //! values beyond ±9·10¹⁸ units of the last digit are refused, so NaN never reaches a file.
 
-/// Largest number of decimals accepted.
-pub const MAX_DECIMALS: u32 = 9;
+pub use crate::job::output::MAX_DECIMALS;
 
 /// 10^d for d = 0…9.
 const POW10: [i64; 10] = [

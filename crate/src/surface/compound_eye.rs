@@ -30,7 +30,7 @@
 //! `z = max(base, every element cap, every lenslet cap defined there)`, with sharp intersections
 //! and no fillet: where two convex pieces meet, the section has a concave slope kink (a valley).
 //! No nose of radius r > 0 reaches into such a valley; the tool leaves its own fillet there,
-//! which the planner's concave-zone report ([`crate::reach`]) measures.
+//! which the planner's concave-zone report ([`crate::tool::reach`]) measures.
 //!
 //! Rooting. Every sphere must sit in its parent: its equator, the horizontal circle of its own
 //! radius through its centre, lies strictly on the material side of the parent (inside a dome

@@ -6,18 +6,25 @@
 //! section at a spindle angle through [`Local::radial`], which is the polar form `z = f(ρ, θ)`
 //! of paper 003 eq (17) differentiated along ρ.
 //!
-//! The families of this module:
-//! - [`asphere::Asphere`]: even asphere (plane and sphere included);
-//! - [`xy_polynomial::XyPolynomial`]: XY polynomial up to degree 10 on an asphere base;
-//! - [`lens_array::LensArray`]: spherical lenslets on a rectangular or hexagonal grid (paper 004,
-//!   Table 1 preset);
-//! - [`sinusoid::Sinusoid`]: the sinusoidal grid `A·sin(2πx/λx + φx)·sin(2πy/λy + φy)`.
+//! The surface layer sits on the helpers alone: every family's spec (its job parameters, read
+//! by [`crate::job`] above) lives beside its maths, and a family made from data reads it from a
+//! [`DataFile`]. A new surface type goes here: a file, a [`SurfaceSpec`] variant, derivative
+//! tests against finite differences.
+//!
+//! The families: even asphere ([`asphere`]), XY polynomial ([`xy_polynomial`]), Zernike
+//! ([`zernike`]), biconic ([`biconic`]), toroid ([`toroid`]), off-axis conic
+//! ([`off_axis_conic`]), tilted flat ([`tilted_flat`]), lens array ([`lens_array`], paper 004),
+//! sinusoid ([`sinusoid`]), compound eye ([`compound_eye`], papers 000/001), progressive lens
+//! ([`pal`], paper 003), NURBS ([`nurbs`]) and STEP faces ([`step_face`]), scattered data
+//! ([`scattered`], paper 004's RBF), and any base with decentred terms ([`composite`]);
+//! [`reframed`] sees any of them along its normal at a point.
 
 pub mod asphere;
 pub mod biconic;
 pub(crate) mod cell_grid;
 pub mod composite;
 pub mod compound_eye;
+pub mod data_file;
 pub mod jet;
 pub mod lens_array;
 pub mod nurbs;
@@ -41,6 +48,7 @@ pub use asphere::{Asphere, AsphereSpec};
 pub use biconic::{Biconic, BiconicSpec};
 pub use composite::{Composite, CompositeSpec, Placed, TermSpec};
 pub use compound_eye::{CompoundEye, CompoundEyeSpec};
+pub use data_file::DataFile;
 pub use lens_array::{LensArray, LensArraySpec};
 pub use nurbs::{Nurbs, NurbsSpec};
 pub use off_axis_conic::{OffAxisConic, OffAxisConicSpec};
@@ -84,6 +92,22 @@ pub struct Radial {
 }
 
 impl Local {
+    /// The principal curvatures `[κ₁, κ₂]`, κ₁ ≥ κ₂, 1/mm, positive where the surface is
+    /// convex towards +Z: the eigenvalues of the shape operator, computed as the power map
+    /// ([`crate::analysis::power_map`]) documents, with full relative accuracy at umbilics.
+    pub fn principal_curvatures(&self) -> [f64; 2] {
+        let (p, q) = (self.zx, self.zy);
+        let (e, f) = (1.0 + p * p, p * q);
+        let w = (1.0 + p * p + q * q).sqrt();
+        let (ll, mm, nn) = (-self.zxx / w, -self.zxy / w, -self.zyy / w);
+        let s11 = ll / e;
+        let s12 = (mm - ll * f / e) / w;
+        let s22 = (nn * e - 2.0 * mm * f + ll * f * f / e) / (w * w);
+        let mean = 0.5 * (s11 + s22);
+        let half_gap = (0.5 * (s11 - s22)).hypot(s12);
+        [mean + half_gap, mean - half_gap]
+    }
+
     /// The derivatives along the unit direction `(cos θ, sin θ)`.
     pub fn radial(&self, cos_t: f64, sin_t: f64) -> Radial {
         Radial {
@@ -288,7 +312,7 @@ impl SurfaceSpec {
     }
 
     /// The data files the surface refers to (scattered points, STEP files), in composites too.
-    pub fn data_files_mut(&mut self) -> Vec<&mut crate::data_file::DataFile> {
+    pub fn data_files_mut(&mut self) -> Vec<&mut DataFile> {
         match self {
             SurfaceSpec::StepFace(s) => vec![&mut s.file],
             SurfaceSpec::Scattered(s) => vec![&mut s.data],

@@ -11,7 +11,7 @@
 //! elsewhere the surface is undefined.
 //!
 //! **What the planner sees.** The local methods are not smooth, and the compensation
-//! ([`crate::compensate`]) treats a surface as smooth between the slope kinks it reports:
+//! ([`crate::tool`]) treats a surface as smooth between the slope kinks it reports:
 //! - wherever the set of n nearest points changes, the RBF, Shepard and four-point surfaces
 //!   *jump* (each side is a different local interpolant; measured on the paper's lens array in
 //!   `crate/docs/rbf-table2.md`);
@@ -41,8 +41,8 @@
 pub mod interpolate;
 
 use super::{Line, Local, PartDisc, Surface, UndefinedError};
-use crate::data_file::DataFile;
 use crate::field::{FieldError, finite, in_range};
+use crate::surface::DataFile;
 use interpolate::data::{Grid, Samples, duplicate_error};
 use interpolate::hull::ConvexHull;
 use interpolate::neighbours::NeighbourSet;

@@ -24,8 +24,8 @@ mod units;
 
 use super::nurbs::Nurbs;
 use super::{Local, PartDisc, Surface, UndefinedError};
-use crate::data_file::DataFile;
 use crate::field::{FieldError, finite};
+use crate::surface::DataFile;
 use part21::{Exchange, Instance};
 use serde::{Deserialize, Serialize};
 

@@ -8,15 +8,15 @@
 //!   (fourth, for the Hessian from the analytic gradient) derivatives below 10⁴ mm⁻² (mm⁻³), both
 //!   stay below 2e-7 + 1e-7·|value|, the tolerance used (a wrong factor or index in any term is
 //!   orders of magnitude larger).
-//! - [`dense_gap`], [`NoseArc`] and [`check_planned_path`]: the brute-force gouge check of one-way nose
-//!   compensation (paper 003 eqs 17–24). The nose arc of centre (ρ_s, z_c) and radius r is
+//! - [`dense_gap`], [`NoseArc`] and [`check_planned_path`]: the brute-force gouge check of one-way
+//!   nose compensation (paper 003 eqs 17–24). The nose arc of centre (ρ_s, z_c) and radius r is
 //!   sampled at `samples + 1` equal steps Δa of the nose angle, plus the arc's ends and given
-//!   offsets (the contact, slope kinks). Between samples the gap
-//!   `g(a) = z_c − r·cos a − f(ρ_s + r·sin a)` is C² with `|g″| ≤ K = r·(1 + |f′|) + r²·|f″|`,
-//!   so its true minimum is at most `K·Δa²/8` below the smallest sample: that bound is computed
-//!   per point (with the sampled maxima of |f′|, |f″| doubled) and subtracted before asserting
-//!   "no cut deeper than 0.1 nm"; "touches within 0.1 nm" needs no correction, the smallest
-//!   sample being an upper bound of the true minimum.
+//!   offsets (the contact, slope kinks). Between samples the gap `g(a) = z_c − r·cos a − f(ρ_s +
+//!   r·sin a)` is C² with `|g″| ≤ K = r·(1 + |f′|) + r²·|f″|`, so its true minimum is at most
+//!   `K·Δa²/8` below the smallest sample: that bound is computed per point (with the sampled maxima
+//!   of |f′|, |f″| doubled) and subtracted before asserting "no cut deeper than 0.1 nm"; "touches
+//!   within 0.1 nm" needs no correction, the smallest sample being an upper bound of the true
+//!   minimum.
 //! - [`Closing`]: the brute-force morphological closing of a radial section by the nose, the
 //!   oracle of the concave-zone report (its docs give its accuracy).
 //! - [`field_error`] and [`check_example_jobs`]: a surface's JSON that must be refused, and the
@@ -28,7 +28,8 @@ use proptest::prelude::*;
 use proptest::test_runner::{Config as ProptestConfig, RngSeed};
 use spiralcam::field::FieldError;
 use spiralcam::job::Job;
-use spiralcam::plan::{PathPoint, Planner};
+use spiralcam::path::PathPoint;
+use spiralcam::plan::Planner;
 use spiralcam::surface::{Local, Surface, SurfaceSpec};
 use std::f64::consts::TAU;
 

@@ -1,6 +1,6 @@
 //! The data of a scattered surface: points `(x, y, z)` in mm read from CSV text, or a regular
 //! height grid read from a small text format, both as a job's data file carries them
-//! ([`crate::data_file::DataFile`]).
+//! ([`crate::surface::DataFile`]).
 //!
 //! **CSV**: one point per line, `x, y, z` in mm, separated by commas, semicolons, tabs or
 //! spaces. Blank lines and everything after a `#` are ignored; a first line whose fields are

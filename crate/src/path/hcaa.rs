@@ -1,7 +1,7 @@
 //! Hybrid constant-angle / constant-arc sampling (HCAA, paper 000, "HCAA method" and
 //! "Evaluation of critical machining parameters for HCAA method") and adaptive sampling: the
 //! largest steps along the spiral that keep the cutting linearization error PVerr
-//! ([`crate::linearization`]) under a tolerance.
+//! ([`crate::analysis::linearization`]) under a tolerance.
 //!
 //! **Error of one step.** The controller moves C, X and Z linearly between NC points, so along a
 //! segment θ and ρ are linear in the angle travelled t and the error is the chord error of the
@@ -44,11 +44,11 @@
 //! **Adaptive.** One constant-angle zone per band (about one revolution's feed wide or one
 //! eighth of a feature): the step follows the required Δθ radius by radius.
 
-use crate::compensate::{Compensation, NoseCompensator};
+use super::PathError;
+use super::spiral::{MAX_POINTS_PER_REV, Spiral, Step, Zone, arc_length};
 use crate::field::FieldError;
-use crate::job::StrategySpec;
-use crate::plan::{PlanError, workers};
-use crate::spiral::{MAX_POINTS_PER_REV, Sampling, Spiral, Step, Zone, arc_length};
+use crate::job::{Compensation, Sampling, StrategySpec};
+use crate::parallel::fill_chunks;
 use crate::surface::{Surface, UndefinedError};
 use std::f64::consts::{PI, TAU};
 
@@ -78,21 +78,14 @@ pub struct Bands {
     pub tolerance_mm: f64,
 }
 
-/// Compensated tip height at (ρ, θ).
-fn tip(
-    surface: &dyn Surface,
-    nose: &NoseCompensator,
-    rho: f64,
-    theta: f64,
-) -> Result<f64, UndefinedError> {
-    let (s, c) = theta.sin_cos();
-    Ok(nose.compensate(surface, rho, c, s)?.z_tip)
-}
+/// The compensated tip height `z*(ρ, θ)` the estimate samples: the one-way compensation of the
+/// job's nose ([`crate::tool::NoseCompensator::compensate`]), given by the caller so that the
+/// sampler needs no tool.
+pub type TipHeight<'a> = dyn Fn(f64, f64) -> Result<f64, UndefinedError> + Sync + 'a;
 
 /// Largest step on the circle of radius `rho` (see the module docs), with M samples.
 fn circle_step_with(
-    surface: &dyn Surface,
-    nose: &NoseCompensator,
+    tip: &TipHeight,
     rho: f64,
     b: f64,
     tol: f64,
@@ -100,9 +93,7 @@ fn circle_step_with(
 ) -> Result<(f64, f64), UndefinedError> {
     let h = TAU / m as f64;
     let ring = |r: f64| -> Result<Vec<f64>, UndefinedError> {
-        (0..m)
-            .map(|j| tip(surface, nose, r, h * j as f64))
-            .collect()
+        (0..m).map(|j| tip(r, h * j as f64)).collect()
     };
     let (zp, z0, zm) = (
         ring(rho + b * h)?,
@@ -124,7 +115,7 @@ fn circle_step_with(
 /// Largest step on the circle of radius `rho`, resampled until `h ≤ Δθ/4` (at most twice).
 fn circle_step(
     surface: &dyn Surface,
-    nose: &NoseCompensator,
+    tip: &TipHeight,
     rho: f64,
     b: f64,
     tol: f64,
@@ -133,7 +124,7 @@ fn circle_step(
     let mut m = ((TAU * rho / along).ceil() as usize).clamp(MIN_SAMPLES, MAX_SAMPLES);
     let mut best = 0.0f64;
     for _ in 0..3 {
-        let (step, smooth) = circle_step_with(surface, nose, rho, b, tol, m)?;
+        let (step, smooth) = circle_step_with(tip, rho, b, tol, m)?;
         best = best.max(step);
         let want = ((4.0 * TAU / smooth).ceil() as usize).min(MAX_SAMPLES);
         if want <= m {
@@ -147,7 +138,7 @@ fn circle_step(
 /// The largest step per radius band from 0 to `outer_radius_mm` for PVerr ≤ `tolerance_mm`.
 pub fn bands(
     surface: &dyn Surface,
-    nose: &NoseCompensator,
+    tip: &TipHeight,
     outer_radius_mm: f64,
     feed_mm: f64,
     tolerance_mm: f64,
@@ -164,27 +155,11 @@ pub fn bands(
     let mut circles = vec![0.0; n + 1];
     let fill = |first: usize, out: &mut [f64]| -> Result<(), UndefinedError> {
         for (j, slot) in out.iter_mut().enumerate() {
-            *slot = circle_step(surface, nose, radius(first + j), b, tol)?;
+            *slot = circle_step(surface, tip, radius(first + j), b, tol)?;
         }
         Ok(())
     };
-    let threads = workers();
-    if threads == 1 {
-        // The browser has no threads: spawning one would trap.
-        fill(0, &mut circles)?;
-    } else {
-        let chunk = (n + 1).div_ceil(threads).max(1);
-        std::thread::scope(|scope| -> Result<(), UndefinedError> {
-            let handles: Vec<_> = circles
-                .chunks_mut(chunk)
-                .enumerate()
-                .map(|(k, out)| scope.spawn(move || fill(k * chunk, out)))
-                .collect();
-            handles
-                .into_iter()
-                .try_for_each(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-        })?;
-    }
+    fill_chunks(&mut circles, fill)?;
     let step_rad = circles.windows(2).map(|w| w[0].min(w[1])).collect();
     Ok(Bands {
         edges_mm: edges,
@@ -350,14 +325,14 @@ pub fn spiral_length_mm(feed_mm: f64, inner_mm: f64, outer_mm: f64) -> f64 {
 }
 
 /// The spiral of an `hcaa` or `adaptive` strategy on `surface`: zones from [`bands`] (any other
-/// sampling is refused: [`crate::plan::spiral`] picks the builder). Field errors are named from
+/// sampling is refused: [`crate::tool::spiral`] picks the builder). Field errors are named from
 /// `strategy`.
 pub fn spiral(
     outer_radius_mm: f64,
     strategy: &StrategySpec,
     surface: &dyn Surface,
-    nose: &NoseCompensator,
-) -> Result<Spiral, PlanError> {
+    tip: &TipHeight,
+) -> Result<Spiral, PathError> {
     let st = strategy;
     let within = |e: FieldError| e.within("strategy");
     let tol_um = match st.sampling {
@@ -368,7 +343,7 @@ pub fn spiral(
             return Err(within(FieldError::new(
                 "sampling.type",
                 format!("{:?}", st.sampling),
-                "is not hcaa or adaptive: plan it with spiralcam::plan::spiral",
+                "is not hcaa or adaptive: plan it with spiralcam::tool::spiral",
             ))
             .into());
         }
@@ -399,7 +374,7 @@ pub fn spiral(
     .map_err(within)?;
     let bands = bands(
         surface,
-        nose,
+        tip,
         outer_radius_mm,
         st.feed_mm_per_rev,
         tol_um * 1e-3,

@@ -8,23 +8,22 @@
 //! would hide everything else. Paper 000 analyses the increments dZ, which removes the trend but
 //! weights every frequency by `2·sin(πf/f_s)` so that amplitudes are no longer heights. Here the
 //! analysed signal is the non-symmetric residual `r = z − S` on the uniform angle grid
-//! ([`crate::path_signal`]: S the two-revolution triangle mean, which removes whole harmonics
-//! exactly): the part of the path that the rotationally symmetric split (paper 002) would leave
-//! to the FTS, in µm, with every frequency at its own amplitude. The symmetric part is treated as
-//! DC.
+//! ([`crate::dynamics::path_signal`]: S the two-revolution triangle mean, which removes whole
+//! harmonics exactly): the part of the path that the rotationally symmetric split (paper 002) would
+//! leave to the FTS, in µm, with every frequency at its own amplitude. The symmetric part is
+//! treated as DC.
 //!
-//! **Spectrum.** A Hann window over the whole record (sidelobes −31 dB, falling 18 dB per
-//! octave, so the residual's remaining slow drift stays near 0 Hz), amplitude
-//! `2·|X_j|/Σw` (the amplitude of a sine centred on a bin). Between bins the raw spectrum reads
-//! low by up to 15 % (Hann scalloping, `sinc δ/(1 − δ²)` at offset δ = ½ bin); listed peaks
-//! are corrected with the exact Hann three-bin relations: for a tone at bin k + δ the
-//! neighbours stand in the ratios `(1 − δ)/(2 + δ)` and `(1 + δ)/(2 − δ)` to bin k, which give
-//! `δ = 2(X₊ − X₋)/(X₋ + 2X₀ + X₊)` and the amplitude `X₀·(1 − δ²)/sinc δ` (exact up to the
-//! tone's own image at −f, a relative 1/(2k)³ for a tone k bins from 0), divided by the gain of
-//! the residual at that frequency ([`crate::path_signal::residual_gain`]; 1 at whole cycles
-//! per revolution, left out below a gain of ½). Bin j of an N-sample
-//! record lies at `j·M/N` cycles per revolution (M samples per revolution), `j·M/N·n/60` Hz:
-//! frequencies scale with the spindle speed, amplitudes do not.
+//! **Spectrum.** A Hann window over the whole record (sidelobes −31 dB, falling 18 dB per octave,
+//! so the residual's remaining slow drift stays near 0 Hz), amplitude `2·|X_j|/Σw` (the amplitude
+//! of a sine centred on a bin). Between bins the raw spectrum reads low by up to 15 % (Hann
+//! scalloping, `sinc δ/(1 − δ²)` at offset δ = ½ bin); listed peaks are corrected with the exact
+//! Hann three-bin relations: for a tone at bin k + δ the neighbours stand in the ratios `(1 − δ)/(2
+//! + δ)` and `(1 + δ)/(2 − δ)` to bin k, which give `δ = 2(X₊ − X₋)/(X₋ + 2X₀ + X₊)` and the
+//! amplitude `X₀·(1 − δ²)/sinc δ` (exact up to the tone's own image at −f, a relative 1/(2k)³ for a
+//! tone k bins from 0), divided by the gain of the residual at that frequency
+//! ([`crate::dynamics::path_signal::residual_gain`]; 1 at whole cycles per revolution, left out
+//! below a gain of ½). Bin j of an N-sample record lies at `j·M/N` cycles per revolution (M samples
+//! per revolution), `j·M/N·n/60` Hz: frequencies scale with the spindle speed, amplitudes do not.
 //!
 //! **Instantaneous frequency.** The analytic signal `r + i·H{r}` by the FFT (positive
 //! frequencies doubled, negative ones removed). A record cut off at its ends has a Hilbert
@@ -41,7 +40,7 @@
 //! instantaneous frequency `(2πρ/λ)·|sin θ|` cycles/rev: its median over a revolution is
 //! `sin(π/4)·2πρ/λ`, its 95th percentile `sin(0.95·π/2)·2πρ/λ`.
 
-use crate::path_signal::{PathSignal, UniformSignal, hz, residual_gain};
+use crate::dynamics::path_signal::{PathSignal, UniformSignal, hz, residual_gain};
 use rustfft::FftPlanner;
 use rustfft::num_complex::Complex;
 use serde::Serialize;
@@ -333,7 +332,7 @@ fn analysable(signal: &PathSignal, spindle_rpm: f64) -> Option<UniformSignal> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::path_signal::tests::spiral;
+    use crate::dynamics::path_signal::tests::spiral;
 
     #[test]
     fn a_tone_between_bins_is_found_at_k_n_over_60_with_its_amplitude() {

@@ -6,7 +6,7 @@
 //! add up to z to the rounding of one subtraction (1e-16 relative).
 //!
 //! **Symmetric** ([`SplitSpec::Symmetric`]): Z is the rotationally symmetric part S of
-//! [`crate::path_signal`] (the two-revolution triangle mean on the uniform angle grid,
+//! [`crate::dynamics::path_signal`] (the two-revolution triangle mean on the uniform angle grid,
 //! interpolated back to the points), W the freeform residual. S differs from the azimuthal mean
 //! by at most `|S″|·f²/12 + Σ|a_m″|·f²/(4π²m²)` (f the feed, a_m the amplitude of harmonic m,
 //! ″ = d²/dρ²), which is what W carries besides the freeform part.
@@ -35,21 +35,24 @@
 //! slide's velocity, acceleration and bandwidth (the cutoff, k*·n/60 Hz) and W against the
 //! FTS's bandwidth and acceleration.
 //!
-//! **Checks and speed.** A channel's velocity and acceleration are its largest slope and
-//! curvature against the spindle angle ([`PathSignal::angle_extremes`]) times ω and ω²; its
-//! bandwidth is the highest significant frequency of its non-symmetric part
-//! ([`crate::spectrum::highest_significant_cycles_per_rev`]) in Hz; the stroke is W's PV. Every
-//! figure is computed once per revolution-angle, so at another speed n′ a velocity or bandwidth
-//! scales by n′/n, an acceleration by (n′/n)², the stroke not at all. Where a check fails the
-//! verdict is [`Verdict::Infeasible`] with the failing checks and the highest speed at which
+//! **Checks and speed.** A channel's velocity and acceleration are its largest slope and curvature
+//! against the spindle angle ([`PathSignal::angle_extremes`]) times ω and ω²; its bandwidth is the
+//! highest significant frequency of its non-symmetric part
+//! ([`crate::dynamics::spectrum::highest_significant_cycles_per_rev`]) in Hz; the stroke is W's PV.
+//! Every figure is computed once per revolution-angle, so at another speed n′ a velocity or
+//! bandwidth scales by n′/n, an acceleration by (n′/n)², the stroke not at all. Where a check fails
+//! the verdict is [`Verdict::Infeasible`] with the failing checks and the highest speed at which
 //! every speed-dependent check passes for the same split geometry (cutoff in cycles per
 //! revolution), `n·min((limit/value)^(1/p))` over the checks (p = 1 or 2), rounded down to three
-//! significant digits; for the automatic split the larger of that speed for the slide alone and
-//! for k*. No speed helps when the stroke fails.
+//! significant digits; for the automatic split the larger of that speed for the slide alone and for
+//! k*. No speed helps when the stroke fails.
 
+use crate::dynamics::path_signal::{
+    PathSignal, SignalError, UniformSignal, hz, omega, peak_to_valley,
+};
+use crate::dynamics::spectrum::highest_significant_cycles_per_rev;
 use crate::field::{FieldError, positive};
-use crate::path_signal::{PathSignal, SignalError, UniformSignal, hz, omega, peak_to_valley};
-use crate::spectrum::highest_significant_cycles_per_rev;
+use crate::job::SplitSpec;
 use rustfft::num_complex::Complex;
 use rustfft::{Fft, FftPlanner};
 use serde::{Deserialize, Serialize};
@@ -67,22 +70,6 @@ pub const EXTENSION_REVS: usize = 16;
 
 /// Relative precision of the automatic cutoff.
 pub const AUTO_PRECISION: f64 = 1e-3;
-
-/// How the path is split between the slide (Z) and the FTS (W): the job's `strategy.split`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
-#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
-pub enum SplitSpec {
-    /// Z the rotationally symmetric part, W the residual (paper 002).
-    #[default]
-    Symmetric,
-    /// Z the zero-phase low-pass of z at `cutoff_hz`, W the rest (paper 000).
-    LowPass {
-        /// Cutoff frequency (half amplitude), Hz, in (0, the path's Nyquist frequency].
-        cutoff_hz: f64,
-    },
-    /// The slide alone if it can, else the lowest cutoff at which W fits the FTS stroke.
-    Auto,
-}
 
 /// The machine's limits as the splitter uses them.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -207,8 +194,9 @@ pub enum SplitError {
     /// A setting is out of range.
     ///
     /// ```
-    /// use spiralcam::split::{split, SplitSpec};
-    /// let s = spiralcam::path_signal::PathSignal { angle_rad: vec![0.0, 1.0, 2.0], rho_mm: vec![1.0; 3], z_mm: vec![0.0; 3] };
+    /// use spiralcam::dynamics::split::split;
+    /// use spiralcam::job::SplitSpec;
+    /// let s = spiralcam::dynamics::path_signal::PathSignal { angle_rad: vec![0.0, 1.0, 2.0], rho_mm: vec![1.0; 3], z_mm: vec![0.0; 3] };
     /// let e = split(&s, &SplitSpec::LowPass { cutoff_hz: -1.0 }, 60.0, None).unwrap_err();
     /// assert!(e.to_string().starts_with("strategy.split.cutoff_hz = -1: must be"));
     /// ```
@@ -217,7 +205,8 @@ pub enum SplitError {
     /// The path cannot be analysed.
     ///
     /// ```
-    /// use spiralcam::split::{split, SplitSpec};
+    /// use spiralcam::dynamics::split::split;
+    /// use spiralcam::job::SplitSpec;
     /// let e = split(&Default::default(), &SplitSpec::Symmetric, 60.0, None).unwrap_err();
     /// assert!(e.to_string().starts_with("the path has 0 points"));
     /// ```
@@ -566,7 +555,7 @@ fn round_down(x: f64, digits: i32) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::path_signal::tests::spiral;
+    use crate::dynamics::path_signal::tests::spiral;
     use std::f64::consts::TAU;
 
     /// Amplitude of the tone of `k` cycles/rev in `v` over the points from revolution

@@ -13,69 +13,20 @@
 //! `S(φ_k) − S(φ_{k+1}) = ΔS` by Newton's method, then takes the smaller of that angle step and
 //! the cap; the last step ends exactly at the centre and may be shorter.
 //!
-//! Hybrid (HCAA, paper 000) and adaptive sampling depend on the surface: [`crate::hcaa`] turns
-//! the PV tolerance into [`Zone`]s (radius bands, each with a constant angle step or a constant
-//! arc length) and builds the spiral with [`Spiral::with_zones`]. Within a zone the step rule is
-//! that of the plain sampling; a step that would end in a zone further in takes the smaller of
-//! the two zones' steps, so every segment obeys the rule of each zone it touches. The path starts
-//! at the outer radius and its last step ends exactly at the centre.
+//! Hybrid (HCAA, paper 000) and adaptive sampling depend on the surface: [`crate::path::hcaa`]
+//! turns the PV tolerance into [`Zone`]s (radius bands, each with a constant angle step or a
+//! constant arc length) and builds the spiral with [`Spiral::with_zones`]. Within a zone the step
+//! rule is that of the plain sampling; a step that would end in a zone further in takes the smaller
+//! of the two zones' steps, so every segment obeys the rule of each zone it touches. The path
+//! starts at the outer radius and its last step ends exactly at the centre.
 //!
-//! [`crate::plan::spiral`] picks the builder of each sampling: [`Spiral::new`],
-//! [`crate::hcaa::spiral`] or [`crate::space_spiral::spiral`].
+//! [`crate::tool::spiral`] picks the builder of each sampling: [`Spiral::new`],
+//! [`crate::path::hcaa::spiral`] or [`crate::path::space_spiral::spiral`].
 
 use crate::field::{FieldError, finite, in_range, positive};
-use serde::{Deserialize, Serialize};
+use crate::job::{Direction, Sampling};
 use std::f64::consts::TAU;
 use std::sync::Arc;
-
-/// How points are spaced along the spiral.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
-pub enum Sampling {
-    /// Equal angle steps: `points_per_rev` points per revolution (paper 003 eq 21).
-    ConstantAngle {
-        /// Points per revolution N, 3 … 1 000 000.
-        points_per_rev: u32,
-    },
-    /// Equal arc length along the planar spiral, the angle step capped near the centre.
-    ConstantArc {
-        /// Arc length ΔS between points, mm, > 0.
-        arc_length_mm: f64,
-        /// Largest angle step, degrees, in (0, 90]; default 1°.
-        #[serde(default = "default_max_angle_step")]
-        max_angle_step_deg: f64,
-    },
-    /// Hybrid constant-angle / constant-arc sampling (paper 000, "HCAA method"): constant angle
-    /// outside the first transition radius, constant arc between the two, constant angle inside
-    /// the second, each step the largest that holds the tolerance, chosen from the surface's
-    /// curvature along the cut ([`crate::hcaa`]).
-    Hcaa {
-        /// Linearization error allowed, PVerr, µm, in [0.001, 1000].
-        pv_tolerance_um: f64,
-    },
-    /// Constant angle step per radius band (about one feed wide, at most 512 bands), each the
-    /// largest that holds the tolerance in that band ([`crate::hcaa`]).
-    Adaptive {
-        /// Linearization error allowed, PVerr, µm, in [0.001, 1000].
-        pv_tolerance_um: f64,
-    },
-    /// The space Archimedean spiral (paper 001, [`crate::space_spiral`]): passes `f` apart along
-    /// the meridian of a best-fit surface of revolution, `points_per_rev` points per revolution
-    /// at constant angle, projected onto the design surface along the base normal; the XY of the
-    /// projected points are the spiral points. Built by [`crate::space_spiral::spiral`] and held
-    /// in memory (16 bytes a point, at most [`MAX_EXPLICIT_POINTS`]).
-    SpaceSpiral {
-        /// Points per revolution N, 3 … 1 000 000.
-        points_per_rev: u32,
-        /// Uniform knot spans of the base generating curve, 1 … 64; default 8.
-        #[serde(default = "default_base_spans")]
-        base_spans: u32,
-    },
-}
-
-fn default_base_spans() -> u32 {
-    8
-}
 
 /// The most points of a spiral held in memory ([`Spiral::from_points`]): 2·10⁷, 320 MB.
 pub const MAX_EXPLICIT_POINTS: u64 = 20_000_000;
@@ -138,31 +89,6 @@ impl Step {
                 (arc_length(b, hi) - arc_length(b, phi_c)) / arc_length_mm
                     + (phi_c - lo) / max_step_rad
             }
-        }
-    }
-}
-
-fn default_max_angle_step() -> f64 {
-    1.0
-}
-
-/// Sense in which the polar angle θ on the part advances along the path, seen from +Z.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Direction {
-    /// θ increases (counter-clockwise).
-    #[default]
-    Ccw,
-    /// θ decreases (clockwise).
-    Cw,
-}
-
-impl Direction {
-    /// +1 for counter-clockwise, −1 for clockwise.
-    pub fn sign(self) -> f64 {
-        match self {
-            Direction::Ccw => 1.0,
-            Direction::Cw => -1.0,
         }
     }
 }
@@ -526,7 +452,7 @@ fn surface_dependent(sampling: &str) -> FieldError {
     FieldError::new(
         "sampling.type",
         sampling,
-        "depends on the surface: plan it with spiralcam::plan::spiral (the planner does)",
+        "depends on the surface: plan it with spiralcam::tool::spiral (the planner does)",
     )
 }
 

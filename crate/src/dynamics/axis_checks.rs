@@ -1,10 +1,10 @@
 //! Axis checks: every point's axis velocities and accelerations against the machine model
-//! ([`crate::machine`]), the block rate the path needs, the fast tool servo's stroke, the cycle
-//! time, and the highest spindle speed that keeps every checked axis within its limits.
+//! ([`crate::job::machine`]), the block rate the path needs, the fast tool servo's stroke, the
+//! cycle time, and the highest spindle speed that keeps every checked axis within its limits.
 //!
 //! **Timing.** The spindle turns at a constant n rev/min, ω = 2π·n/60 rad/s, and the NC feeds
 //! in inverse time, so the block from point k to point k+1 lasts `Δt_k = |θ_{k+1} − θ_k|/ω`
-//! (θ the cumulative polar angle, [`crate::plan::PathPoint::theta`]); the cycle time is
+//! (θ the cumulative polar angle, [`crate::path::PathPoint::theta`]); the cycle time is
 //! `Σ Δt_k`, `|θ_last − θ_0|/ω` for the monotone θ of every planner sampling. All geometry is
 //! fixed, so every figure is a derivative with respect to θ scaled by ω: velocities scale with
 //! n, accelerations with n², the block rate with n.
@@ -29,7 +29,7 @@
 //! rate figures, and no acceleration is taken across them (a repeated point included: its
 //! neighbours' blocks are taken alone). Samples with a non-finite value are skipped and
 //! counted. An invalid spindle speed (not finite, ≤ 0; see
-//! [`crate::machine::MachineSpec::validate`]) gives non-finite figures, written as null.
+//! [`crate::job::MachineSpec::validate`]) gives non-finite figures, written as null.
 //!
 //! **Highest spindle speed.** With v, a and b the largest velocity, acceleration and block rate
 //! at the job's speed n₀, a limit V, A or B holds up to `n₀·V/v`, `n₀·√(A/a)`, `n₀·B/b`; the
@@ -37,12 +37,12 @@
 //! binds. A figure is counted as a violation when it exceeds its limit by more than
 //! [`LIMIT_ROUNDING`] (relative), so that the path is reported within limits at that speed.
 //!
-//! Bandwidths are not checked here: the splitter ([`crate::machine`] limits, paper 000) decides
-//! what each axis must follow in frequency.
+//! Bandwidths are not checked here: the splitter ([`crate::job::machine`] limits, paper 000)
+//! decides what each axis must follow in frequency.
 
-use crate::machine::MachineSpec;
-use crate::plan::PathPoint;
-use crate::report::Location;
+use crate::job::MachineSpec;
+use crate::path::Location;
+use crate::path::PathPoint;
 use serde::Serialize;
 use std::f64::consts::TAU;
 
@@ -400,8 +400,8 @@ impl Block {
 /// see the module docs for the method. Never panics; O(1) memory besides the lists.
 ///
 /// ```
-/// use spiralcam::axis_checks::{AxisSample, check_axes};
-/// use spiralcam::machine::MachineSpec;
+/// use spiralcam::dynamics::axis_checks::{AxisSample, check_axes};
+/// use spiralcam::job::MachineSpec;
 /// // One revolution in 4 steps at 60 rpm (1 s), X from 1 mm to 0.
 /// let s: Vec<_> = (0..5).map(|k| {
 ///     let theta = k as f64 * std::f64::consts::FRAC_PI_2;
@@ -415,7 +415,7 @@ impl Block {
 /// ```
 pub fn check_axes(samples: &[AxisSample], machine: &MachineSpec) -> AxisReport {
     let omega = machine.spindle_rpm / 60.0 * TAU;
-    let slide = |s: Option<&crate::machine::SlideSpec>| {
+    let slide = |s: Option<&crate::job::machine::SlideSpec>| {
         (
             s.map(|s| s.velocity_mm_per_s()),
             s.map(|s| s.acceleration_mm_per_s2),
@@ -632,18 +632,18 @@ fn warnings(r: &AxisReport) -> Vec<String> {
 mod tests {
     use super::*;
 
-    use crate::plan::Planner;
     use crate::surface::UndefinedError;
+    use crate::tool::ToolPath;
 
     /// The planner's whole path as [`AxisSample::slide_only`] samples.
-    fn slide_only_samples(planner: &Planner) -> Result<Vec<AxisSample>, UndefinedError> {
+    fn slide_only_samples(planner: &ToolPath) -> Result<Vec<AxisSample>, UndefinedError> {
         planner
             .points()
             .map(|p| p.map(|p| AxisSample::slide_only(&p)))
             .collect()
     }
     use crate::job::Job;
-    use crate::machine::{FtsSpec, SlideSpec, presets};
+    use crate::job::machine::{FtsSpec, SlideSpec, presets};
     use proptest::prelude::*;
     use proptest::test_runner::{Config, RngSeed};
 
@@ -791,7 +791,7 @@ mod tests {
     /// The tilted flat of `crate/jobs/tilted-flat.json` on a 4 mm part, the spiral from
     /// 1.99 mm (so that the nose, 0.5 mm, touches the part inside its edge everywhere).
     fn tilted_flat_job() -> Job {
-        let mut job = Job::from_json(include_str!("../jobs/tilted-flat.json")).unwrap();
+        let mut job = Job::from_json(include_str!("../../jobs/tilted-flat.json")).unwrap();
         job.part.diameter_mm = 4.0;
         job.strategy.outer_radius_mm = Some(1.99);
         job
@@ -825,7 +825,7 @@ mod tests {
     #[test]
     fn tilted_flat_z_velocity_is_rho_tan_tilt_omega() {
         let job = tilted_flat_job();
-        let planner = Planner::new(&job).unwrap();
+        let planner = ToolPath::new(&job).unwrap();
         let s = slide_only_samples(&planner).unwrap();
         for p in &s {
             assert!((p.z_mm - tilted_flat_z(&job, p.rho_mm, p.theta).0).abs() < 1e-12);
@@ -877,7 +877,7 @@ mod tests {
     #[test]
     fn tilted_flat_violations_are_at_the_rim() {
         let job = tilted_flat_job();
-        let planner = Planner::new(&job).unwrap();
+        let planner = ToolPath::new(&job).unwrap();
         let s = slide_only_samples(&planner).unwrap();
         let rpm = job.machine.spindle_rpm;
         let w = omega(rpm);

@@ -39,7 +39,7 @@
 
 use crate::field::{FieldError, finite, positive};
 use crate::job::StrategySpec;
-use crate::spiral::{MAX_EXPLICIT_POINTS, Spiral, SpiralPoint, check_points_per_rev};
+use crate::path::spiral::{MAX_EXPLICIT_POINTS, Spiral, SpiralPoint, check_points_per_rev};
 use crate::surface::nurbs::basis::KnotVector;
 use crate::surface::{Surface, UndefinedError};
 use nalgebra::{DMatrix, DVector};
@@ -584,7 +584,7 @@ pub fn z_projection(
     Ok(out)
 }
 
-/// The spiral of the `space_spiral` sampling ([`crate::plan::spiral`] picks it): fits the base
+/// The spiral of the `space_spiral` sampling ([`crate::tool::spiral`] picks it): fits the base
 /// surface over the outer radius, lays the space spiral (passes f apart along the base meridian,
 /// N points per revolution, oriented by the strategy's start angle and direction, a last point
 /// at s = 0 added where the constant-angle steps miss it) and takes the XY of the projected

@@ -5,7 +5,7 @@
 //!
 //! Between path points k and k+1 the machine passes through `ρ(s) = ρ_k + s·Δρ`,
 //! `θ(s) = θ_k + s·Δθ`, `Z_lin(s) = z_k + s·Δz`, s ∈ [0, 1]. The height the tool tip should
-//! have there is the compensated tip height `z*(s)` of [`crate::compensate`] at `(ρ(s), θ(s))`
+//! have there is the compensated tip height `z*(s)` of [`crate::tool`] at `(ρ(s), θ(s))`
 //! (the sag for a sharp tool), and the error is `e(s) = Z_lin(s) − z*(s)`: e < 0 the tool dips
 //! into the design surface (overcut), e > 0 it leaves material (undercut); e(0) = e(1) = 0.
 //! The paper iterates on the angle ∂θ reached at an arc length ∂S from the first point (to
@@ -51,13 +51,15 @@
 //! most the variation of e over that interval.
 //!
 //! [`LinearizationCheck`] consumes a path in order and keeps the worst overcut and undercut and a
-//! map; [`analyse`] runs it over a planner's path.
+//! map; [`analyse`] runs it over a tool_path's path.
 
-use crate::compensate::NoseCompensator;
-use crate::plan::{PROGRESS_EVERY, PathPoint, Planner};
+use crate::path::Location;
+use crate::path::PathPoint;
+use crate::progress::PROGRESS_EVERY;
 use crate::raster::Raster;
-use crate::report::Location;
 use crate::surface::{Local, Surface, UndefinedError};
+use crate::tool::NoseCompensator;
+use crate::tool::ToolPath;
 use serde::Serialize;
 
 /// Height, mm, below which the refinement of an extreme stops (see the module docs).
@@ -190,10 +192,10 @@ fn not_finite(rho: f64, theta: f64, what: &str) -> UndefinedError {
 }
 
 impl<'a> Context<'a> {
-    fn new(planner: &'a Planner) -> Self {
+    fn new(tool_path: &'a ToolPath) -> Self {
         Self {
-            surface: planner.surface(),
-            nose: planner.nose(),
+            surface: tool_path.surface(),
+            nose: tool_path.nose(),
         }
     }
 
@@ -499,13 +501,13 @@ fn segment<'c, 'a>(
 }
 
 /// The largest overcut and undercut of the linear move from `a` to `b` (consecutive points of
-/// `planner`'s path; see the module docs).
+/// `tool_path`'s path; see the module docs).
 pub fn segment_error(
-    planner: &Planner,
+    tool_path: &ToolPath,
     a: &PathPoint,
     b: &PathPoint,
 ) -> Result<SegmentError, UndefinedError> {
-    let ctx = Context::new(planner);
+    let ctx = Context::new(tool_path);
     let seg = segment(&ctx, a, b)?;
     let (ja, jb) = (ctx.jet_of_point(a)?, ctx.jet_of_point(b)?);
     seg.errors(&ja, &jb)
@@ -514,12 +516,12 @@ pub fn segment_error(
 /// e(s), de/ds and d²e/ds² of the move from `a` to `b` at s (0 and 1 use the points' own
 /// contacts, so e is exactly 0 there), for checks and plots.
 pub fn error_at(
-    planner: &Planner,
+    tool_path: &ToolPath,
     a: &PathPoint,
     b: &PathPoint,
     s: f64,
 ) -> Result<ErrorSample, UndefinedError> {
-    let ctx = Context::new(planner);
+    let ctx = Context::new(tool_path);
     let seg = segment(&ctx, a, b)?;
     let n = if s == 0.0 {
         seg.node(0.0, 0.0, &ctx.jet_of_point(a)?)
@@ -551,21 +553,21 @@ pub struct LinearizationCheck {
 }
 
 impl LinearizationCheck {
-    /// A check of a path of `planner`, mapped on a `map_size` × `map_size` raster over the part
+    /// A check of a path of `tool_path`, mapped on a `map_size` × `map_size` raster over the part
     /// (clamped as [`Raster::over_part`] does).
-    pub fn new(planner: &Planner, map_size: usize) -> Self {
+    pub fn new(tool_path: &ToolPath, map_size: usize) -> Self {
         Self {
             prev: None,
             segments: 0,
             overcut: None,
             undercut: None,
-            map: Raster::over_part(planner.job().part_radius_mm(), map_size),
+            map: Raster::over_part(tool_path.job().part_radius_mm(), map_size),
         }
     }
 
     /// Takes the next point of the path (the first only starts it).
-    pub fn add(&mut self, planner: &Planner, p: &PathPoint) -> Result<(), UndefinedError> {
-        let ctx = Context::new(planner);
+    pub fn add(&mut self, tool_path: &ToolPath, p: &PathPoint) -> Result<(), UndefinedError> {
+        let ctx = Context::new(tool_path);
         let jet = ctx.jet_of_point(p)?;
         if let Some((a, ja)) = &self.prev {
             let err = segment(&ctx, a, p)?.errors(ja, &jet)?;
@@ -614,17 +616,17 @@ impl LinearizationCheck {
     }
 }
 
-/// Checks the whole path of `planner`, mapped on a `map_size` raster; `progress` gets the points
+/// Checks the whole path of `tool_path`, mapped on a `map_size` raster; `progress` gets the points
 /// done every [`PROGRESS_EVERY`] points and at the end.
 pub fn analyse(
-    planner: &Planner,
+    tool_path: &ToolPath,
     map_size: usize,
     mut progress: impl FnMut(u64),
 ) -> Result<LinearizationReport, UndefinedError> {
-    let mut check = LinearizationCheck::new(planner, map_size);
+    let mut check = LinearizationCheck::new(tool_path, map_size);
     let mut done = 0u64;
-    for p in planner.points() {
-        check.add(planner, &p?)?;
+    for p in tool_path.points() {
+        check.add(tool_path, &p?)?;
         done += 1;
         if done.is_multiple_of(PROGRESS_EVERY) {
             progress(done);
@@ -638,15 +640,16 @@ pub fn analyse(
 mod tests {
     use super::*;
     use crate::job::Job;
+    use crate::tool::ToolPath;
 
-    fn planner(surface: &str, part_radius: f64, r: f64) -> Planner {
+    fn planner(surface: &str, part_radius: f64, r: f64) -> ToolPath {
         let json = format!(
             r#"{{"name":"t","part":{{"diameter_mm":{}}},"surface":{surface},
             "tool":{{"nose_radius_mm":{r}}},"machine":{{"spindle_rpm":1000}},
             "strategy":{{"feed_mm_per_rev":0.3,"sampling":{{"type":"constant_angle","points_per_rev":12}}}}}}"#,
             2.0 * part_radius
         );
-        Planner::new(&Job::from_json(&json).unwrap()).unwrap()
+        ToolPath::new(&Job::from_json(&json).unwrap()).unwrap()
     }
 
     fn seg<'c, 'a>(ctx: &'c Context<'a>, a: (f64, f64), b: (f64, f64)) -> Segment<'c, 'a> {

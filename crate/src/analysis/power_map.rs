@@ -2,9 +2,10 @@
 //! the part: the optical reading of a surface's curvature, the measure paper 003 uses to judge
 //! its progressive lens (section 4, Figure 12: power and astigmatism maps).
 //!
-//! **Curvatures.** For the graph z = f(x, y) with p = f_x, q = f_y, W = √(1 + p² + q²), the first
-//! fundamental form is `E = 1 + p²`, `F = pq`, `G = 1 + q²` and the second, taken with the unit
-//! normal pointing into the material (−Z, away from the tool), `L = −f_xx/W`, `M = −f_xy/W`,
+//! **Curvatures** ([`Local::principal_curvatures`]). For the graph z = f(x, y) with p = f_x,
+//! q = f_y, W = √(1 + p² + q²), the first fundamental form is `E = 1 + p²`, `F = pq`,
+//! `G = 1 + q²` and the second, taken with the unit normal pointing into the material (−Z,
+//! away from the tool), `L = −f_xx/W`, `M = −f_xy/W`,
 //! `N = −f_yy/W` (do Carmo, Differential Geometry of Curves and Surfaces, §3-3). The principal
 //! curvatures κ₁ ≥ κ₂ are the eigenvalues of the shape operator I⁻¹·II; with the Cholesky factor
 //! I = C·Cᵀ (C₁₁ = √E, C₂₁ = F/√E, C₂₂ = W/√E) they are those of the symmetric
@@ -28,21 +29,6 @@ use crate::surface::{Local, PartDisc, Surface};
 /// Largest map side accepted, samples.
 pub const MAX_MAP_SIZE: usize = 4096;
 
-/// The principal curvatures `[κ₁, κ₂]`, κ₁ ≥ κ₂, 1/mm, positive where the surface is convex
-/// towards +Z (see the module documentation).
-pub fn principal_curvatures(l: &Local) -> [f64; 2] {
-    let (p, q) = (l.zx, l.zy);
-    let (e, f) = (1.0 + p * p, p * q);
-    let w = (1.0 + p * p + q * q).sqrt();
-    let (ll, mm, nn) = (-l.zxx / w, -l.zxy / w, -l.zyy / w);
-    let s11 = ll / e;
-    let s12 = (mm - ll * f / e) / w;
-    let s22 = (nn * e - 2.0 * mm * f + ll * f * f / e) / (w * w);
-    let mean = 0.5 * (s11 + s22);
-    let half_gap = (0.5 * (s11 - s22)).hypot(s12);
-    [mean + half_gap, mean - half_gap]
-}
-
 /// Mean power and cylinder at one point.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfacePower {
@@ -55,7 +41,7 @@ pub struct SurfacePower {
 impl SurfacePower {
     /// The powers of the surface whose local derivatives are `l`, for refractive index n.
     pub fn from_local(l: &Local, refractive_index: f64) -> Self {
-        let [k1, k2] = principal_curvatures(l);
+        let [k1, k2] = l.principal_curvatures();
         let scale = 1000.0 * (refractive_index - 1.0);
         Self {
             mean_d: scale * 0.5 * (k1 + k2),
@@ -193,7 +179,7 @@ mod tests {
             let s = Asphere::sphere(r).unwrap();
             for &(x, y) in &[(0.0, 0.0), (7.0, -3.0), (-12.0, 15.0), (0.0, 23.0)] {
                 let l = s.local(x, y).unwrap();
-                let [k1, k2] = principal_curvatures(&l);
+                let [k1, k2] = l.principal_curvatures();
                 for k in [k1, k2] {
                     assert!(
                         (k + 1.0 / r).abs() < 1e-14 / r.abs(),
@@ -239,7 +225,7 @@ mod tests {
     fn a_cylinder_has_one_zero_curvature() {
         let c = Cylinder(20.0);
         for &(x, y) in &[(0.0, 0.0), (12.0, 5.0), (-18.0, -9.0)] {
-            let [k1, k2] = principal_curvatures(&c.local(x, y).unwrap());
+            let [k1, k2] = c.local(x, y).unwrap().principal_curvatures();
             assert_eq!(k1, 0.0, "({x}, {y})");
             assert!((k2 + 1.0 / 20.0).abs() < 1e-15, "({x}, {y}): {k2}");
             let p = SurfacePower::from_local(&c.local(x, y).unwrap(), 1.5);
@@ -270,7 +256,7 @@ mod tests {
                 zxy: 0.0,
                 zyy: fyy,
             };
-            let [k1, k2] = principal_curvatures(&l);
+            let [k1, k2] = l.principal_curvatures();
             assert!((k1 - (h + root)).abs() < 1e-15, "({x}, {y}): {k1}");
             assert!((k2 - (h - root)).abs() < 1e-15, "({x}, {y}): {k2}");
         }
@@ -296,7 +282,7 @@ mod tests {
                 zxy,
                 zyy,
             };
-            let got = principal_curvatures(&l);
+            let got = l.principal_curvatures();
             let want = extreme_normal_curvatures(&l);
             let scale = got[0].abs().max(got[1].abs());
             for (g, w) in got.iter().zip(want) {

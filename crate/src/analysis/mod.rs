@@ -1,12 +1,18 @@
-//! The accuracy analysis of a planned path, in one pass over it: the cutting linearization
-//! error between NC points ([`crate::linearization`], paper 000), the machined form predicted
-//! from the nose swept along the path ([`crate::predicted_form`]), the tool angles the surface
-//! asks for ([`crate::tool_geometry`], paper 000), and how far the part is from a surface of
-//! revolution with the pass spacing the space spiral would give
-//! ([`crate::space_spiral::survey`], paper 001). The command line prints it as JSON
-//! (`spiralcam analyse`); the page shows its figures and maps.
+//! The analysis layer: the accuracy of a planned path, read from its tool path
+//! ([`crate::tool::ToolPath`]) with the layers below it.
 //!
-//! All three assume one-way compensation (X on the spiral); a two-way job is refused.
+//! - [`linearization`]: the cutting linearization error between NC points (paper 000, PVerr);
+//! - [`predicted_form`]: the machined form predicted from the nose swept along the path;
+//! - [`power_map`]: mean power and cylinder of a surface (paper 003's maps).
+//!
+//! This module is the accuracy report ([`Analysis`]): in one pass over the path the
+//! linearization error, the predicted form, the tool angles the surface asks for
+//! ([`crate::tool::geometry`], paper 000), and how far the part is from a surface of revolution
+//! with the pass spacing the space spiral would give ([`crate::path::space_spiral::survey`],
+//! paper 001). The command line prints it as JSON (`spiralcam analyse`); the page shows its
+//! figures and maps.
+//!
+//! The analyses assume one-way compensation (X on the spiral); a two-way job is refused.
 //!
 //! The two measure different things: the linearization error is found at its extremes on every
 //! segment; the predicted form samples the path where it crosses 360 half-planes through the
@@ -15,14 +21,20 @@
 //! and adds what the linearization check leaves out: the cusps between passes and the nose's
 //! envelope.
 
-use crate::compensate::Compensation;
+pub mod linearization;
+pub mod power_map;
+pub mod predicted_form;
+
+use crate::analysis::linearization::{LinearizationCheck, LinearizationReport};
+use crate::analysis::predicted_form::{FormPredictor, FormSettings, PredictedForm};
 use crate::field::FieldError;
-use crate::linearization::{LinearizationCheck, LinearizationReport};
-use crate::plan::{PROGRESS_EVERY, PlanError, Planner, Progress};
-use crate::predicted_form::{FormPredictor, FormSettings, PredictedForm};
+use crate::job::Compensation;
+use crate::path::PathError;
+use crate::path::space_spiral::{Survey, survey};
+use crate::progress::{PROGRESS_EVERY, Progress};
 use crate::raster::Raster;
-use crate::space_spiral::{Survey, survey};
-use crate::tool_geometry::{ToolGeometryCheck, ToolGeometryReport};
+use crate::tool::ToolPath;
+use crate::tool::geometry::{ToolGeometryCheck, ToolGeometryReport};
 use serde::Serialize;
 use std::borrow::Cow;
 use std::ops::ControlFlow;
@@ -46,14 +58,14 @@ pub struct Analysis {
 }
 
 impl Analysis {
-    /// Runs both analyses over `planner`'s path with maps of `map_size` × `map_size` samples;
-    /// `progress` sees the points read and may stop the run ([`PlanError::Cancelled`]).
+    /// Runs both analyses over `tool_path`'s path with maps of `map_size` × `map_size` samples;
+    /// `progress` sees the points read and may stop the run ([`PathError::Cancelled`]).
     pub fn run(
-        planner: &Planner,
+        tool_path: &ToolPath,
         map_size: usize,
         progress: &mut dyn FnMut(Progress) -> ControlFlow<()>,
-    ) -> Result<Self, PlanError> {
-        if planner.job().strategy.compensation == Compensation::TwoWay {
+    ) -> Result<Self, PathError> {
+        if tool_path.job().strategy.compensation == Compensation::TwoWay {
             return Err(FieldError::new(
                 "strategy.compensation",
                 "two_way",
@@ -61,37 +73,41 @@ impl Analysis {
             )
             .into());
         }
-        let total = planner.spiral().point_count_hint();
-        let mut linearization = LinearizationCheck::new(planner, map_size);
-        let angles = planner.job().tool.angles().map_err(|e| e.within("tool"))?;
-        let mut tool_geometry = ToolGeometryCheck::new(planner, &angles, map_size);
+        let total = tool_path.spiral().point_count_hint();
+        let mut linearization = LinearizationCheck::new(tool_path, map_size);
+        let angles = tool_path
+            .job()
+            .tool
+            .angles()
+            .map_err(|e| e.within("tool"))?;
+        let mut tool_geometry = ToolGeometryCheck::new(tool_path, &angles, map_size);
         let mut notes = Vec::new();
-        let mut form = match FormPredictor::new(planner, &FormSettings::default(), map_size) {
+        let mut form = match FormPredictor::new(tool_path, &FormSettings::default(), map_size) {
             Ok(f) => Some(f),
-            Err(PlanError::Job(e)) => {
+            Err(PathError::Job(e)) => {
                 notes.push(format!("no predicted form: {e}"));
                 None
             }
             Err(e) => return Err(e),
         };
         let mut done = 0u64;
-        for p in planner.points() {
+        for p in tool_path.points() {
             let p = p?;
-            linearization.add(planner, &p)?;
-            tool_geometry.add(planner, &p)?;
+            linearization.add(tool_path, &p)?;
+            tool_geometry.add(tool_path, &p)?;
             if let Some(f) = form.as_mut() {
                 f.push(&p)?;
             }
             done += 1;
             if done.is_multiple_of(PROGRESS_EVERY) && progress(Progress { done, total }).is_break()
             {
-                return Err(PlanError::Cancelled);
+                return Err(PathError::Cancelled);
             }
         }
         let _ = progress(Progress { done, total });
-        let job = planner.job();
+        let job = tool_path.job();
         let revolution = match survey(
-            planner.surface(),
+            tool_path.surface(),
             job.part_radius_mm(),
             job.strategy.feed_mm_per_rev,
         ) {
@@ -102,7 +118,7 @@ impl Analysis {
             }
         };
         Ok(Self {
-            job: planner.job().name.clone(),
+            job: tool_path.job().name.clone(),
             linearization: linearization.finish(),
             predicted_form: form.map(FormPredictor::finish).transpose()?,
             tool_geometry: tool_geometry.finish(),
@@ -146,12 +162,13 @@ impl Analysis {
 mod tests {
     use super::*;
     use crate::job::Job;
+    use crate::tool::ToolPath;
 
     #[test]
     fn a_two_way_job_is_refused_naming_the_field() {
         let mut job = Job::default_job();
         job.strategy.compensation = Compensation::TwoWay;
-        let planner = Planner::new(&job).unwrap();
+        let planner = ToolPath::new(&job).unwrap();
         let e = Analysis::run(&planner, 8, &mut |_| ControlFlow::Continue(())).unwrap_err();
         assert!(
             e.to_string()

@@ -1,22 +1,23 @@
 //! The compensated path as a signal of the spindle angle, the common input of the frequency
-//! analysis ([`crate::spectrum`], paper 000 "Hybrid Hilbert transform/fast Fourier transform
-//! methodology") and of the splitter ([`crate::split`]).
+//! analysis ([`crate::dynamics::spectrum`], paper 000 "Hybrid Hilbert transform/fast Fourier
+//! transform methodology") and of the splitter
+//! ([`crate::dynamics::split`](mod@crate::dynamics::split)).
 //!
 //! **Time.** The spindle turns at constant speed n and the path is sent with inverse-time feed,
 //! so point i is reached at `t_i = φ_i/ω`, `φ_i = |θ_i − θ_0|`, `ω = 2π·n/60`. Everything here
 //! is a function of φ; a speed only rescales it (k cycles per revolution is k·n/60 Hz, a slope
 //! dz/dφ is a velocity ×ω, a curvature d²z/dφ² an acceleration ×ω²).
 //!
-//! **Uniform grid.** The FFT needs equal time steps; constant-arc and HCAA paths have angle
-//! steps that change with the radius. [`PathSignal::uniform`] resamples the path onto
-//! `M` samples per revolution, M the densest sampling of any revolution of the path (at least
-//! 8; at most enough for 4 samples per path point over the whole path), so the grid's Nyquist
-//! frequency M/2 cycles/rev is at least that of every part of the path. Samples are taken by
-//! linear interpolation in φ between path points. That is exactly the motion the controller
-//! executes (C, X and Z linear in time between blocks under inverse-time feed), so the grid adds
-//! no error to the commanded motion; the commanded motion differs from the surface by the
-//! linearization error PVerr ([`crate::linearization`]) that the sampling already bounds. With
-//! constant-angle sampling the grid falls on the path points.
+//! **Uniform grid.** The FFT needs equal time steps; constant-arc and HCAA paths have angle steps
+//! that change with the radius. [`PathSignal::uniform`] resamples the path onto `M` samples per
+//! revolution, M the densest sampling of any revolution of the path (at least 8; at most enough for
+//! 4 samples per path point over the whole path), so the grid's Nyquist frequency M/2 cycles/rev is
+//! at least that of every part of the path. Samples are taken by linear interpolation in φ between
+//! path points. That is exactly the motion the controller executes (C, X and Z linear in time
+//! between blocks under inverse-time feed), so the grid adds no error to the commanded motion; the
+//! commanded motion differs from the surface by the linearization error PVerr
+//! ([`crate::analysis::linearization`]) that the sampling already bounds. With constant-angle
+//! sampling the grid falls on the path points.
 //!
 //! **Rotationally symmetric part** (paper 002, "surface decomposition": a rotationally
 //! symmetric surface cut by X, C and Z plus a freeform remainder). On a spiral each radius is
@@ -39,7 +40,7 @@
 //! `1 − T(ν)`, `T(ν) = (sin πν / (M·sin(πν/M)))²` ([`residual_gain`]): 1 at whole ν, at
 //! least 0.95 from ν = 1 on.
 
-use crate::plan::PathPoint;
+use crate::path::PathPoint;
 use std::f64::consts::TAU;
 use thiserror::Error;
 
@@ -66,7 +67,7 @@ pub enum SignalError {
     /// Fewer than three points, or no angle turned.
     ///
     /// ```
-    /// let s = spiralcam::path_signal::PathSignal::default();
+    /// let s = spiralcam::dynamics::path_signal::PathSignal::default();
     /// assert_eq!(s.check().unwrap_err().to_string(),
     ///            "the path has 0 points over 0 rad: the analysis needs at least 3 points over a positive angle");
     /// ```
@@ -82,7 +83,7 @@ pub enum SignalError {
     /// The columns have different lengths.
     ///
     /// ```
-    /// let s = spiralcam::path_signal::PathSignal { angle_rad: vec![0.0, 1.0, 2.0], rho_mm: vec![1.0; 3], z_mm: vec![0.0; 2] };
+    /// let s = spiralcam::dynamics::path_signal::PathSignal { angle_rad: vec![0.0, 1.0, 2.0], rho_mm: vec![1.0; 3], z_mm: vec![0.0; 2] };
     /// assert!(s.check().unwrap_err().to_string().starts_with("the path's columns differ"));
     /// ```
     #[error(
@@ -99,7 +100,7 @@ pub enum SignalError {
     /// A value is NaN or infinite.
     ///
     /// ```
-    /// let s = spiralcam::path_signal::PathSignal { angle_rad: vec![0.0, 1.0, 2.0], rho_mm: vec![1.0; 3], z_mm: vec![0.0, f64::NAN, 0.0] };
+    /// let s = spiralcam::dynamics::path_signal::PathSignal { angle_rad: vec![0.0, 1.0, 2.0], rho_mm: vec![1.0; 3], z_mm: vec![0.0, f64::NAN, 0.0] };
     /// assert_eq!(s.check().unwrap_err().to_string(), "the path has a value that is not finite at point 1");
     /// ```
     #[error("the path has a value that is not finite at point {index}")]
@@ -111,7 +112,7 @@ pub enum SignalError {
     /// the spindle): time would run backwards.
     ///
     /// ```
-    /// let s = spiralcam::path_signal::PathSignal { angle_rad: vec![0.0, 1.0, 0.5], rho_mm: vec![1.0; 3], z_mm: vec![0.0; 3] };
+    /// let s = spiralcam::dynamics::path_signal::PathSignal { angle_rad: vec![0.0, 1.0, 0.5], rho_mm: vec![1.0; 3], z_mm: vec![0.0; 3] };
     /// assert!(s.check().unwrap_err().to_string().starts_with("the spindle angle goes back at point 2"));
     /// ```
     #[error(

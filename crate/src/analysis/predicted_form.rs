@@ -4,7 +4,7 @@
 //!
 //! **Model.** The cutting edge is the nose arc of radius r in the radial plane through the
 //! spindle axis at the current C angle, limited to ±β/2 about the tool axis (reach
-//! `w = r·sin(β/2)` either side of the nose centre; [`crate::compensate`]). Between NC points the
+//! `w = r·sin(β/2)` either side of the nose centre; [`crate::tool`]). Between NC points the
 //! controller moves C, X and Z linearly, so the edge passes through the half-plane at polar angle
 //! φ once per revolution, at the point of the segment (k, k+1) whose C is φ (mod 2π): there
 //! `t = (φ − θ_k)/(θ_{k+1} − θ_k)`, the nose centre sits at `ρ* = ρ_k + t·(ρ_{k+1} − ρ_k)`,
@@ -58,9 +58,12 @@
 //! sample falls.
 
 use crate::field::FieldError;
-use crate::plan::{PROGRESS_EVERY, PathPoint, PlanError, Planner};
+use crate::path::PathError;
+use crate::path::PathPoint;
+use crate::progress::PROGRESS_EVERY;
 use crate::raster::Raster;
 use crate::surface::{Surface, UndefinedError};
+use crate::tool::ToolPath;
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, VecDeque};
 use std::f64::consts::TAU;
@@ -171,8 +174,8 @@ pub struct SectionSample {
     pub design_mm: f64,
 }
 
-/// Predicts the form of `planner`'s path on the grid `settings`, with a `map_size` × `map_size`
-/// map over the part (0: no map). Reads the path once ([`Planner::points`]); `progress` gets
+/// Predicts the form of `tool_path`'s path on the grid `settings`, with a `map_size` × `map_size`
+/// map over the part (0: no map). Reads the path once ([`ToolPath::points`]); `progress` gets
 /// the number of path points read every [`PROGRESS_EVERY`] points and at the end.
 ///
 /// Errors: a setting out of range ([`FieldError`] on `form.angles` or `form.radial_step_mm`), a
@@ -180,13 +183,13 @@ pub struct SectionSample {
 /// `strategy.feed_mm_per_rev` ≥ the nose's chord `2r·sin(β/2)`), and a surface undefined where
 /// the path or a sample needs it.
 pub fn predict(
-    planner: &Planner,
+    tool_path: &ToolPath,
     settings: &FormSettings,
     map_size: usize,
     mut progress: impl FnMut(u64),
-) -> Result<PredictedForm, PlanError> {
-    let mut predictor = FormPredictor::new(planner, settings, map_size)?;
-    for p in planner.points() {
+) -> Result<PredictedForm, PathError> {
+    let mut predictor = FormPredictor::new(tool_path, settings, map_size)?;
+    for p in tool_path.points() {
         predictor.push(&p?)?;
         if predictor.points.is_multiple_of(PROGRESS_EVERY) {
             progress(predictor.points);
@@ -200,10 +203,10 @@ pub fn predict(
 /// grid `settings`, from the centre out to the band edge; the same computation as [`predict`],
 /// for plots and checks. Errors as [`predict`], and `form.angle` when `angle ≥ angles`.
 pub fn predict_section(
-    planner: &Planner,
+    tool_path: &ToolPath,
     settings: &FormSettings,
     angle: usize,
-) -> Result<Vec<SectionSample>, PlanError> {
+) -> Result<Vec<SectionSample>, PathError> {
     if angle >= settings.angles {
         return Err(FieldError::new(
             "form.angle",
@@ -212,10 +215,10 @@ pub fn predict_section(
         )
         .into());
     }
-    let mut predictor = FormPredictor::new(planner, settings, 0)?;
+    let mut predictor = FormPredictor::new(tool_path, settings, 0)?;
     predictor.only = Some(angle);
     predictor.ctx.section = Some((angle, Vec::new()));
-    for p in planner.points() {
+    for p in tool_path.points() {
         predictor.push(&p?)?;
     }
     let mut samples = predictor
@@ -243,13 +246,13 @@ pub struct FormPredictor<'a> {
 impl<'a> FormPredictor<'a> {
     /// Checks the settings against the job and prepares the grid and the map (see [`predict`]).
     pub fn new(
-        planner: &'a Planner,
+        tool_path: &'a ToolPath,
         settings: &FormSettings,
         map_size: usize,
-    ) -> Result<Self, PlanError> {
-        let f = planner.spiral().feed_mm();
+    ) -> Result<Self, PathError> {
+        let f = tool_path.spiral().feed_mm();
         let h = settings.radial_step(f).map_err(|e| e.within("form"))?;
-        let nose = planner.nose();
+        let nose = tool_path.nose();
         let r = nose.nose_radius();
         if r <= 0.0 {
             return Err(FieldError::new(
@@ -271,8 +274,8 @@ impl<'a> FormPredictor<'a> {
             )
             .into());
         }
-        let part = planner.job().part_radius_mm();
-        let rho_max = planner.spiral().start_radius_mm().min(part);
+        let part = tool_path.job().part_radius_mm();
+        let rho_max = tool_path.spiral().start_radius_mm().min(part);
         let n = settings.angles;
         let radial = (rho_max / h).floor() + 1.0;
         if n as f64 * radial > MAX_SAMPLES {
@@ -305,7 +308,7 @@ impl<'a> FormPredictor<'a> {
         let map = (map_size > 0).then(|| MapAcc::new(&grid, part, map_size));
         Ok(Self {
             ctx: Context {
-                surface: planner.surface(),
+                surface: tool_path.surface(),
                 grid,
                 stats: Stats::default(),
                 map,
@@ -319,7 +322,7 @@ impl<'a> FormPredictor<'a> {
     }
 
     /// Takes the next point of the path.
-    pub fn push(&mut self, p: &PathPoint) -> Result<(), PlanError> {
+    pub fn push(&mut self, p: &PathPoint) -> Result<(), PathError> {
         if !(p.rho.is_finite() && p.theta.is_finite() && p.z.is_finite()) {
             return Err(undefined(p.rho, p.theta, "the path point is not finite").into());
         }
@@ -347,14 +350,14 @@ impl<'a> FormPredictor<'a> {
     }
 
     /// Evaluates what is left and returns the prediction.
-    pub fn finish(self) -> Result<PredictedForm, PlanError> {
+    pub fn finish(self) -> Result<PredictedForm, PathError> {
         let (n, h) = (self.ctx.grid.n, self.ctx.grid.h);
         let ctx = self.complete()?;
         Ok(ctx.stats.result(n, h, ctx.map))
     }
 
     /// The pass at grid angle `m` (unwrapped), `t` along the segment from `a` to `b` (ρ, z).
-    fn pass(&mut self, m: f64, t: f64, a: (f64, f64), b: (f64, f64)) -> Result<(), PlanError> {
+    fn pass(&mut self, m: f64, t: f64, a: (f64, f64), b: (f64, f64)) -> Result<(), PathError> {
         let n = self.ctx.grid.n;
         let j = (m.rem_euclid(n as f64) as usize).min(n - 1);
         if let Some(k) = self.only
@@ -375,7 +378,7 @@ impl<'a> FormPredictor<'a> {
 
     /// Adds the last point's pass, merges each half-plane with its opposite near the axis and
     /// evaluates every sample left.
-    fn complete(mut self) -> Result<Context<'a>, PlanError> {
+    fn complete(mut self) -> Result<Context<'a>, PathError> {
         if let Some((q, rho, z)) = self.prev
             && q == q.round()
         {

@@ -8,8 +8,8 @@
 //!
 //! Everything but the spindle speed is optional: a limit that is not given is not checked, and
 //! without `fts` the machine has no fast tool servo. The checks against these limits are in
-//! [`crate::axis_checks`] (velocity, acceleration, block rate, FTS stroke); the bandwidths are
-//! used by the splitter.
+//! [`crate::dynamics::axis_checks`] (velocity, acceleration, block rate, FTS stroke); the
+//! bandwidths are used by the splitter.
 //!
 //! [`presets`] gives three example machines. Their numbers are plausible orders of magnitude
 //! for the class of machine, chosen for this program's examples and tests; they are **not** any
@@ -79,7 +79,7 @@ impl MachineSpec {
     /// machine (`spindle_rpm`, `fts.stroke_um`); the job puts `machine.` in front.
     ///
     /// ```
-    /// let mut m = spiralcam::machine::presets()[1].machine(600.0);
+    /// let mut m = spiralcam::job::machine::presets()[1].machine(600.0);
     /// m.validate().unwrap();
     /// m.fts.as_mut().unwrap().stroke_um = 0.0;
     /// assert_eq!(m.validate().unwrap_err().to_string(),
@@ -198,7 +198,7 @@ const LATHE_SLIDE: SlideSpec = SlideSpec {
 ///   (full-stroke sine limited at ≈ 470 Hz); 10 000 blocks/s.
 ///
 /// ```
-/// let keys = spiralcam::machine::presets().map(|p| p.key);
+/// let keys = spiralcam::job::machine::presets().map(|p| p.key);
 /// assert_eq!(keys, ["sss_lathe", "fts_500um_1khz", "fts_70um_700hz"]);
 /// ```
 pub fn presets() -> [MachinePreset; 3] {

@@ -11,18 +11,18 @@
 //! flagged with curvature radius 0, however small its jump. Flagged samples
 //! that touch (in ρ, or in θ at the same ρ) form one zone.
 //!
-//! Depth: the cut surface is the lower envelope of the nose arcs, `cut(u) = min_ρs [z_c(ρ_s) −
-//! √(r² − (u − ρ_s)²)]`, with z_c the compensated centre height ([`crate::compensate`]); the form
-//! error is the closing residual `cut(u) − f(u)`. It is found on a grid around the zone and
-//! refined by nested golden-section searches (over u for the largest residual, over ρ_s for the
-//! envelope), because at a kink both functions have corners that a grid would only resolve to
-//! first order. The depth reported is the largest of those found at up to five angles of each
-//! zone: the sharpest, and four spread evenly over the zone's angles. Zones shallower than 0.1 nm (a radial section grazing a
+//! Depth: the cut surface is the lower envelope of the nose arcs, `cut(u) = min_ρs [z_c(ρ_s) − √(r²
+//! − (u − ρ_s)²)]`, with z_c the compensated centre height ([`crate::tool`]); the form error is the
+//! closing residual `cut(u) − f(u)`. It is found on a grid around the zone and refined by nested
+//! golden-section searches (over u for the largest residual, over ρ_s for the envelope), because at
+//! a kink both functions have corners that a grid would only resolve to first order. The depth
+//! reported is the largest of those found at up to five angles of each zone: the sharpest, and four
+//! spread evenly over the zone's angles. Zones shallower than 0.1 nm (a radial section grazing a
 //! slope kink) are counted but not listed.
 
-use crate::compensate::NoseCompensator;
-use crate::report::Location;
+use crate::path::Location;
 use crate::surface::{Line, Surface, UndefinedError};
+use crate::tool::NoseCompensator;
 use serde::Serialize;
 use std::f64::consts::TAU;
 
@@ -501,7 +501,7 @@ fn golden(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::compensate::ToolSpec;
+    use crate::job::ToolSpec;
     use crate::surface::Local;
 
     /// A rotationally symmetric V-groove `z = k·|ρ − ρ₀|`.

@@ -12,7 +12,7 @@
 //! **Conventions.** Z is the axis, the sag `z = f(x, y)` rises towards the tool (+Z). At a path
 //! point (ρ, θ) the radial direction is `û = (cos θ, sin θ)` and the tangential one
 //! `v̂ = (−sin θ, cos θ)`. The path is the tool's track on the part: θ advances with the sign `s`
-//! of `strategy.direction` (+1 ccw, −1 cw, [`crate::spiral::Direction::sign`]), so the tool
+//! of `strategy.direction` (+1 ccw, −1 cw, [`crate::job::Direction::sign`]), so the tool
 //! moves over the part along the cutting direction `t̂ = s·v̂` (the radial feed, f per
 //! revolution, is neglected against the circumferential motion). The slope along the cutting
 //! direction is `ϕ = ∇f·t̂ = s·(−f_x sin θ + f_y cos θ)`, positive where the surface rises
@@ -41,7 +41,7 @@
 //! says; it quotes |γ_cr| = 90° − (steepest rise), about 70° in its example.
 //!
 //! **Included angle.** The nose arc spans `a ∈ [−β/2, β/2]` about −Z in the radial plane
-//! ([`crate::compensate`]); its point at nose angle a has tangent slope `tan a`, so it touches a
+//! ([`crate::tool`]); its point at nose angle a has tangent slope `tan a`, so it touches a
 //! radial slope f_ρ at `a = atan f_ρ` (outward half for f_ρ > 0, inward half for f_ρ < 0). The
 //! nose reaches every radial slope when `β/2 ≥ ε_out = max atan(max(0, f_ρ))` and
 //! `β/2 ≥ ε_in = max atan(max(0, −f_ρ))`: the critical included angle is
@@ -49,7 +49,7 @@
 //! compensation puts the contact at an end of the arc (its "arc-end contacts") and the straight
 //! flank beyond the arc would have to cut the rest. The paper states β_cr as an upper bound with
 //! a clearance C of the side faces; that bound (the side faces rubbing a steep wall) needs the
-//! tool's side clearance, which [`crate::compensate::ToolSpec`] does not describe, and is not
+//! tool's side clearance, which [`crate::job::ToolSpec`] does not describe, and is not
 //! checked here.
 //!
 //! **Holder tilt.** Rotating the tool holder by λ about the radial axis, away from the
@@ -64,47 +64,19 @@
 //! A point interferes when `α_req > α + 1e-9°` ([`ANGLE_TOLERANCE`]): the margin absorbs the
 //! rounding of `α + (α_cr − α)`, so that the reported tilt clears exactly.
 
-use crate::plan::{PathPoint, Planner};
+use crate::job::ToolAngles;
+use crate::path::Location;
+use crate::path::PathPoint;
 use crate::raster::Raster;
-use crate::report::Location;
 use crate::surface::UndefinedError;
-use serde::{Deserialize, Serialize};
+use crate::tool::ToolPath;
+use serde::Serialize;
 
 /// Margin, degrees, by which the required clearance must exceed the tool's to count as an
 /// interference (rounding of the tilted clearance; see the module docs).
 pub const ANGLE_TOLERANCE: f64 = 1e-9;
 /// Interference locations listed in the report.
 pub const MAX_LISTED: usize = 10;
-
-/// The rake and front clearance angles of the tool, degrees.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct ToolAngles {
-    /// Rake angle γ, degrees; default 0° (a zero-rake diamond, the usual tool for optics).
-    pub rake_deg: f64,
-    /// Front clearance angle α, degrees; default 10°, typical of single-crystal diamond tools
-    /// (manufacturers make up to about 30°, paper 000).
-    pub clearance_deg: f64,
-}
-
-impl Default for ToolAngles {
-    fn default() -> Self {
-        Self {
-            rake_deg: 0.0,
-            clearance_deg: 10.0,
-        }
-    }
-}
-
-impl ToolAngles {
-    /// The effective angles with the holder tilted by `lambda_deg` away from the workpiece:
-    /// clearance `α + λ`, rake `γ − λ`.
-    pub fn tilted(&self, lambda_deg: f64) -> Self {
-        Self {
-            rake_deg: self.rake_deg - lambda_deg,
-            clearance_deg: self.clearance_deg + lambda_deg,
-        }
-    }
-}
 
 /// The critical angles at one point (see the module docs), degrees.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -223,9 +195,9 @@ pub struct ToolGeometryCheck {
 }
 
 impl ToolGeometryCheck {
-    /// A check of `tool` on `planner`'s path with a map of `map_size` × `map_size` samples.
-    pub fn new(planner: &Planner, tool: &ToolAngles, map_size: usize) -> Self {
-        let job = planner.job();
+    /// A check of `tool` on `tool_path`'s path with a map of `map_size` × `map_size` samples.
+    pub fn new(tool_path: &ToolPath, tool: &ToolAngles, map_size: usize) -> Self {
+        let job = tool_path.job();
         Self {
             tool: *tool,
             included_angle_deg: job.tool.included_angle_deg,
@@ -243,10 +215,10 @@ impl ToolGeometryCheck {
     }
 
     /// Adds the next path point.
-    pub fn add(&mut self, planner: &Planner, p: &PathPoint) -> Result<(), UndefinedError> {
+    pub fn add(&mut self, tool_path: &ToolPath, p: &PathPoint) -> Result<(), UndefinedError> {
         let (s, c) = p.theta.sin_cos();
         let (x, y) = (p.rho * c, p.rho * s);
-        let l = planner.surface().local(x, y)?;
+        let l = tool_path.surface().local(x, y)?;
         let a = PointAngles::from_gradient(l.zx, l.zy, p.theta, self.sign);
         self.points += 1;
         self.clearance.keep_max(a.clearance_deg, p.rho, p.theta);
@@ -349,15 +321,15 @@ impl ToolGeometryCheck {
     }
 }
 
-/// Runs the check of `tool` over `planner`'s whole path.
+/// Runs the check of `tool` over `tool_path`'s whole path.
 pub fn check(
-    planner: &Planner,
+    tool_path: &ToolPath,
     tool: &ToolAngles,
     map_size: usize,
 ) -> Result<ToolGeometryReport, UndefinedError> {
-    let mut c = ToolGeometryCheck::new(planner, tool, map_size);
-    for p in planner.points() {
-        c.add(planner, &p?)?;
+    let mut c = ToolGeometryCheck::new(tool_path, tool, map_size);
+    for p in tool_path.points() {
+        c.add(tool_path, &p?)?;
     }
     Ok(c.finish())
 }

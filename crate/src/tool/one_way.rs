@@ -19,133 +19,14 @@
 //! lenslet's rim) samples are added just either side of it, so that F is smooth between any two
 //! samples: a kink between samples could otherwise let F rise, fall and rise again unseen. The
 //! sample grid has an odd number of intervals, so that a = 0 (where F′ = 0 over flat land) falls
-//! inside a bracket, not on a sample. The NC commands the tool tip `z_c − r`. With r = 0 the tip follows the sag.
+//! inside a bracket, not on a sample. The NC commands the tool tip `z_c − r`. With r = 0 the tip
+//! follows the sag.
 //!
 //! The arc is cut at the part's edge: beyond `limit_radius_mm` there is no material.
-//!
-//! # Two-way compensation
-//!
-//! [`NoseCompensator::compensate_two_way`] (job `strategy.compensation: "two_way"`) takes the
-//! spiral point P = (ρ_s cos θ, ρ_s sin θ, f) as the contact itself and puts the nose centre on
-//! the surface normal: `centre = P + r·n`, `n = (−f_x, −f_y, 1)/√(1 + f_x² + f_y²)` (out of the
-//! material, towards the tool). The tool is commanded at the centre's polar coordinates:
-//! X = ρ_c = |centre_xy| ≥ 0 and C = θ + δ, δ ∈ (−π, π] the centre's polar angle measured from
-//! θ (so C is the centre's polar angle, unwrapped to lie within 180° of θ), and Z the tip,
-//! `centre z − r`. X thus leaves the spiral. Near the axis, where ρ_s < r·sin(slope), the centre
-//! may no longer wind about the axis and C departs far from θ.
-//!
-//! The centre is a point of the offset surface, which folds (the offset self-intersects, leaving
-//! loops in the path) wherever a principal curvature κ of the surface, positive where it is
-//! concave towards the tool, reaches 1/r: such points are flagged ([`TwoWay::folds`]), not
-//! corrected. A slope kink (a concave V between lenslets) folds the offset too but is not flagged
-//! (no curvature to measure there); the concave-zone report ([`crate::reach`], one-way) covers it.
-//! The arc is not cut at the part edge in two-way mode.
 
 use crate::field::{FieldError, in_range, non_negative};
-use crate::power_map::principal_curvatures;
-use crate::surface::{Line, Local, Surface, UndefinedError};
-use crate::tool_geometry::ToolAngles;
-use serde::{Deserialize, Serialize};
-
-/// The tool of a job.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ToolSpec {
-    /// Nose radius r, mm, ≥ 0 (0: a sharp tool, the tip follows the sag).
-    pub nose_radius_mm: f64,
-    /// Included angle β of the nose arc, degrees, in (0, 180]; default 100°. The arc reaches
-    /// β/2 either side of the tool axis (−Z).
-    #[serde(default = "default_included_angle")]
-    pub included_angle_deg: f64,
-    /// Rake angle γ, degrees, in [−80, 80]; default 0° (a zero-rake diamond). Used by the tool
-    /// geometry check ([`crate::tool_geometry`]), not by the compensation.
-    #[serde(default)]
-    pub rake_deg: f64,
-    /// Front clearance angle α, degrees, in [0, 80]; default 10°. Used by the tool geometry
-    /// check, not by the compensation.
-    #[serde(default = "default_clearance")]
-    pub clearance_deg: f64,
-}
-
-fn default_included_angle() -> f64 {
-    100.0
-}
-
-fn default_clearance() -> f64 {
-    ToolAngles::default().clearance_deg
-}
-
-impl ToolSpec {
-    /// A tool of nose radius `r` mm and the default angles (included 100°, rake 0°, clearance
-    /// 10°).
-    pub fn with_nose_radius(r: f64) -> Self {
-        Self {
-            nose_radius_mm: r,
-            included_angle_deg: default_included_angle(),
-            rake_deg: 0.0,
-            clearance_deg: default_clearance(),
-        }
-    }
-
-    /// The rake and clearance angles, checked (field names relative to the tool).
-    pub fn angles(&self) -> Result<ToolAngles, FieldError> {
-        Ok(ToolAngles {
-            rake_deg: in_range("rake_deg", self.rake_deg, -80.0, 80.0)?,
-            clearance_deg: in_range("clearance_deg", self.clearance_deg, 0.0, 80.0)?,
-        })
-    }
-}
-
-/// How the nose is placed on the surface: the job's `strategy.compensation`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Compensation {
-    /// X stays on the spiral; Z is lifted until the nose touches (paper 003 eqs 17–24).
-    #[default]
-    OneWay,
-    /// The spiral point is the contact; the nose centre lies on its surface normal, X and C
-    /// follow the centre (see the module docs).
-    TwoWay,
-}
-
-impl Compensation {
-    /// Whether this is the default, one-way compensation.
-    pub fn is_one_way(&self) -> bool {
-        *self == Compensation::OneWay
-    }
-}
-
-/// The two-way placement of the nose for one spiral point (see the module docs).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TwoWay {
-    /// Nose centre `P + r·n` (x, y, z), mm.
-    pub center: [f64; 3],
-    /// Commanded X: the centre's radial position `|centre_xy|`, mm, ≥ 0.
-    pub x: f64,
-    /// C − θ: the centre's polar angle relative to the spiral point's, radians in (−π, π].
-    pub c_offset: f64,
-    /// Commanded Z: the tool tip `centre z − r`, mm.
-    pub z_tip: f64,
-    /// The contact P: the spiral point on the surface (x, y, z), mm.
-    pub contact: [f64; 3],
-    /// Unit surface normal at P, out of the material.
-    pub normal: [f64; 3],
-    /// Nose angle of the contact in the centre's radial plane, radians (positive: outward).
-    pub angle: f64,
-    /// The normal tilts further from the tool axis than β/2: the contact lies beyond the
-    /// nose arc, and the tool's flank may cut.
-    pub at_arc_end: bool,
-    /// The offset surface folds here (a principal curvature ≥ 1/r, concave towards the tool):
-    /// the path has a loop.
-    pub folds: bool,
-}
-
-/// The largest principal curvature of the surface at `l`, 1/mm, positive where the surface
-/// is concave towards the tool (+Z): `−κ₂` of [`crate::power_map::principal_curvatures`]
-/// (whose curvatures are positive where the surface is convex towards +Z).
-pub fn max_principal_curvature(l: &Local) -> f64 {
-    -principal_curvatures(l)[1]
-}
+use crate::job::ToolSpec;
+use crate::surface::{Line, Surface, UndefinedError};
 
 /// Where the nose touches the surface for one spiral point.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -248,6 +129,18 @@ impl NoseCompensator {
         (lo, hi.max(lo))
     }
 
+    /// The one-way tip height `z_c − r` over the point (ρ, θ) of `surface`: the height HCAA
+    /// samples ([`crate::path::hcaa::TipHeight`]).
+    pub fn tip_height(
+        &self,
+        surface: &dyn Surface,
+        rho: f64,
+        theta: f64,
+    ) -> Result<f64, UndefinedError> {
+        let (s, c) = theta.sin_cos();
+        Ok(self.compensate(surface, rho, c, s)?.z_tip)
+    }
+
     /// The contact for the spiral point at radius `rho_s` and angle with cosine/sine `(c, s)`.
     pub fn compensate(
         &self,
@@ -306,42 +199,6 @@ impl NoseCompensator {
             rho: rho_s + r * best.a.sin(),
             z: best.z,
             at_arc_end: at_arc_end && best.g.abs() > 1e-12 * r,
-        })
-    }
-
-    /// Two-way compensation of the spiral point at radius `rho_s` and angle with cosine/sine
-    /// `(c, s)`: the point is the contact, the nose centre lies r along the normal (see the
-    /// module docs).
-    pub fn compensate_two_way(
-        &self,
-        surface: &dyn Surface,
-        rho_s: f64,
-        c: f64,
-        s: f64,
-    ) -> Result<TwoWay, UndefinedError> {
-        let r = self.r;
-        let (px, py) = (rho_s * c, rho_s * s);
-        let l = surface.local(px, py)?;
-        let w = (1.0 + l.zx * l.zx + l.zy * l.zy).sqrt();
-        let normal = [-l.zx / w, -l.zy / w, 1.0 / w];
-        let center = [px + r * normal[0], py + r * normal[1], l.z + r * normal[2]];
-        // The centre in the frame of the spiral point's radial line.
-        let along = center[0] * c + center[1] * s;
-        let across = center[1] * c - center[0] * s;
-        let c_offset = across.atan2(along);
-        let (sd, cd) = c_offset.sin_cos();
-        let (cos_c, sin_c) = (c * cd - s * sd, s * cd + c * sd);
-        let n_radial = normal[0] * cos_c + normal[1] * sin_c;
-        Ok(TwoWay {
-            center,
-            x: along.hypot(across),
-            c_offset,
-            z_tip: center[2] - r,
-            contact: [px, py, l.z],
-            normal,
-            angle: (-n_radial).atan2(normal[2]),
-            at_arc_end: r > 0.0 && normal[2].clamp(-1.0, 1.0).acos() > self.half_angle + 1e-12,
-            folds: r * max_principal_curvature(&l) >= 1.0,
         })
     }
 }
@@ -515,6 +372,7 @@ impl Section<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::job::ToolAngles;
     use crate::surface::{Asphere, AsphereSpec};
 
     fn tool(r: f64) -> ToolSpec {

@@ -1,21 +1,36 @@
-//! The job: one JSON document that says everything the planner needs (README "Job format").
+//! The job layer: one JSON document that says everything the planner needs (README "Job
+//! format", crate/docs/job-format.md), as spec types with their defaults and checks. It uses
+//! only the field helpers and the surface families' own specs ([`crate::surface::SurfaceSpec`]:
+//! each family's parameters live beside its maths), so every layer above may read a job.
 //!
 //! Units are in the field names (`_mm`, `_deg`, `_rpm`). Unknown fields are rejected, so a typo
 //! is an error rather than a silently ignored setting. [`Job::from_json`] parses and
-//! [`Job::validate`] checks every value against its range; both give errors that name the field.
+//! [`Job::validate`] checks the values no single stage owns; the stages check their own fields
+//! (the samplers the sampling, the compensator the tool) when they are built. Every error
+//! names the field.
+//!
+//! - [`tool`]: `tool` (nose radius, included, rake and clearance angles);
+//! - [`strategy`]: `strategy` (feed, sampling, direction, compensation, split);
+//! - [`machine`]: `machine` (spindle, slides, servo, block rate) and the example presets;
+//! - [`output`]: `output` (dialect, decimals, signs, feed mode, approach).
 
-use crate::compensate::{Compensation, ToolSpec};
+pub mod machine;
+pub mod output;
+pub mod strategy;
+pub mod tool;
+
+pub use machine::MachineSpec;
+pub use output::{Dialect, FeedMode, OutputSpec};
+pub use strategy::{Compensation, Direction, Sampling, SplitSpec, StrategySpec};
+pub use tool::{ToolAngles, ToolSpec};
+
 use crate::field::{FieldError, finite, positive};
-pub use crate::machine::MachineSpec;
-use crate::nc::OutputSpec;
-use crate::spiral::{Direction, Sampling};
-use crate::split::SplitSpec;
 use crate::surface::{PartDisc, Reframed, Surface, SurfaceSpec};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 /// The example job for the paper 004 lens array, planned by the page on load.
-pub const DEFAULT_JOB: &str = include_str!("../jobs/lens-array-paper004.json");
+pub const DEFAULT_JOB: &str = include_str!("../../jobs/lens-array-paper004.json");
 
 /// A whole job.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -49,33 +64,6 @@ pub struct PartSpec {
     /// being mounted with that point on the axis ([`crate::surface::Reframed`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub normal_axis_at_mm: Option<[f64; 2]>,
-}
-
-/// How the spiral is laid.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct StrategySpec {
-    /// Radial feed per revolution f, mm, > 0.
-    pub feed_mm_per_rev: f64,
-    /// Point spacing along the spiral.
-    pub sampling: Sampling,
-    /// Sense of θ along the path; default `ccw`.
-    #[serde(default)]
-    pub direction: Direction,
-    /// Polar angle of the first point, degrees; default 0.
-    #[serde(default)]
-    pub start_angle_deg: f64,
-    /// Radius where the spiral starts, mm; default the part radius.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub outer_radius_mm: Option<f64>,
-    /// Tool nose compensation, `one_way` (default) or `two_way`
-    /// ([`crate::compensate::Compensation`]).
-    #[serde(default, skip_serializing_if = "Compensation::is_one_way")]
-    pub compensation: Compensation,
-    /// The split of the path between the Z slide and a fast tool servo
-    /// ([`crate::split::SplitSpec`]); absent: the slide cuts alone.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub split: Option<SplitSpec>,
 }
 
 /// A job that cannot be read.

@@ -1,26 +1,61 @@
-//! Machine dynamics of a planned path (issue 5): the path as a signal of time at the spindle
-//! speed, its amplitude spectrum and instantaneous frequency per radius band
-//! ([`crate::spectrum`], paper 000's FFT and Hilbert transform), the split between the slide
-//! and a fast tool servo ([`crate::split`], papers 000 and 002), and every point's axis
-//! velocities and accelerations against the machine ([`crate::axis_checks`]).
+//! The dynamics layer: a planned path as a signal of time at the spindle speed, against the
+//! machine (paper 000, "Hybrid Hilbert transform/fast Fourier transform methodology for geometry
+//! splitting"; paper 002's decomposition). It reads the tool path ([`crate::tool::ToolPath`])
+//! and uses the layers below it.
 //!
-//! It runs over the whole path in memory (the FFT needs it: about 100 bytes a point), before
-//! the NC program is written, when the job asks for it: a `strategy.split`, or any limit in
-//! `machine` (slides, FTS, block rate). The program is then written in a second pass with the
-//! slide's share `Z` and the servo's `W` ([`crate::nc::NcWriter::point_split`]).
+//! - [`path_signal`]: the path against the spindle angle, resampled on a uniform grid, and its
+//!   rotationally symmetric part;
+//! - [`spectrum`]: the amplitude spectrum (FFT) and the instantaneous frequency (Hilbert
+//!   transform) per radius band;
+//! - [`split`](mod@split): the split of the path between the Z slide and a fast tool servo W
+//!   (symmetric, low-pass, automatic), with Z + W = z;
+//! - [`axis_checks`]: every point's axis velocities and accelerations against the machine
+//!   ([`crate::job::machine`]), the block rate, the servo stroke, the cycle time.
+//!
+//! This module runs them over the whole path in memory (the FFT needs it: about 100 bytes a
+//! point), before the NC program is written, when the job asks for it: a `strategy.split`, or
+//! any limit in `machine` (slides, FTS, block rate). The program is then written in a second
+//! pass with the slide's share `Z` and the servo's `W` ([`crate::nc::NcWriter::point_split`]).
 
-use crate::axis_checks::{AxisReport, AxisSample, check_axes};
-use crate::job::Job;
-use crate::machine::MachineSpec;
-use crate::path_signal::{PathSignal, UniformSignal, extremes, hz, peak_to_valley};
-use crate::plan::{PathPoint, PlanError, Planner, Progress};
-use crate::spectrum::{
+pub mod axis_checks;
+pub mod path_signal;
+pub mod spectrum;
+pub mod split;
+
+use crate::dynamics::axis_checks::{AxisReport, AxisSample, check_axes};
+use crate::dynamics::path_signal::{PathSignal, UniformSignal, extremes, hz, peak_to_valley};
+use crate::dynamics::spectrum::{
     BandFrequency, Spectrum, amplitude_spectrum, highest_significant_cycles_per_rev,
     instantaneous_frequency,
 };
-use crate::split::{Limit, SplitLimits, SplitSpec, Verdict, split};
+use crate::dynamics::split::{Limit, SplitError, SplitLimits, Verdict, split};
+use crate::job::Job;
+use crate::job::MachineSpec;
+use crate::job::SplitSpec;
+use crate::path::PathError;
+use crate::path::PathPoint;
+use crate::progress::Progress;
+use crate::tool::ToolPath;
 use serde::Serialize;
 use std::ops::ControlFlow;
+use thiserror::Error;
+
+/// Why the dynamics of a path could not be computed.
+#[derive(Debug, Error)]
+pub enum DynamicsError {
+    /// The path could not be planned, or the run was cancelled.
+    #[error(transparent)]
+    Path(#[from] PathError),
+    /// The path cannot be split between the slide and the servo.
+    #[error(transparent)]
+    Split(#[from] SplitError),
+}
+
+impl From<crate::field::FieldError> for DynamicsError {
+    fn from(e: crate::field::FieldError) -> Self {
+        DynamicsError::Path(e.into())
+    }
+}
 
 /// Bins of the spectrum kept for display (peaks survive the decimation).
 pub const SPECTRUM_BINS: usize = 2048;
@@ -51,10 +86,10 @@ pub struct DynamicsReport {
 /// A slide's bandwidth against what its channel asks.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct BandwidthCheck {
-    /// The channel's highest significant frequency at the spindle speed, Hz (the highest at
-    /// which the spectrum of its non-symmetric part reaches 1 % of its largest amplitude;
-    /// [`crate::spectrum::highest_significant_cycles_per_rev`]); `None` when the path cannot
-    /// be analysed.
+    /// The channel's highest significant frequency at the spindle speed, Hz (the highest at which
+    /// the spectrum of its non-symmetric part reaches 1 % of its largest amplitude;
+    /// [`crate::dynamics::spectrum::highest_significant_cycles_per_rev`]); `None` when the path
+    /// cannot be analysed.
     pub needed_hz: Option<f64>,
     /// The slide's bandwidth, Hz; `None` when the job gives none.
     pub limit_hz: Option<f64>,
@@ -295,13 +330,13 @@ impl DynamicsReport {
 }
 
 impl Dynamics {
-    /// Plans the path of `planner` into memory and analyses it (module docs); `progress` as
-    /// for [`Planner::run`].
+    /// Computes `path` into memory and analyses it (module docs); `progress` as for
+    /// [`ToolPath::for_each_point`].
     pub fn run(
-        planner: &Planner,
+        path: &ToolPath,
         progress: &mut dyn FnMut(Progress) -> ControlFlow<()>,
-    ) -> Result<Self, PlanError> {
-        let total = planner.spiral().point_count_hint();
+    ) -> Result<Self, DynamicsError> {
+        let total = path.spiral().point_count_hint();
         if total > MAX_POINTS {
             return Err(crate::field::FieldError::new(
                 "strategy.sampling",
@@ -313,16 +348,16 @@ impl Dynamics {
             )
             .into());
         }
-        let mut path = Columns::with_capacity(usize::try_from(total).unwrap_or(0));
-        planner.for_each_point(progress, &mut |p, _| {
-            path.push(p);
-            Ok(())
+        let mut columns = Columns::with_capacity(usize::try_from(total).unwrap_or(0));
+        path.for_each_point(progress, &mut |p, _| {
+            columns.push(p);
+            Ok::<(), DynamicsError>(())
         })?;
-        Self::of_columns(planner.job(), &path)
+        Ok(Self::of_columns(path.job(), &columns)?)
     }
 
     /// The dynamics of the planned `points` of `job`.
-    pub fn of_points(job: &Job, points: &[PathPoint]) -> Result<Self, PlanError> {
+    pub fn of_points(job: &Job, points: &[PathPoint]) -> Result<Self, SplitError> {
         let mut path = Columns::with_capacity(points.len());
         for p in points {
             path.push(p);
@@ -330,7 +365,7 @@ impl Dynamics {
         Self::of_columns(job, &path)
     }
 
-    fn of_columns(job: &Job, path: &Columns) -> Result<Self, PlanError> {
+    fn of_columns(job: &Job, path: &Columns) -> Result<Self, SplitError> {
         let machine = &job.machine;
         let rpm = machine.spindle_rpm;
         let signal = &path.signal;

@@ -1,0 +1,224 @@
+//! The tool path of a job: its surface as the spindle sees it, its spiral, and the nose
+//! compensator that turns each spiral point into a commanded point ([`PathPoint`]). It is what
+//! every analysis reads ([`crate::analysis`], [`crate::dynamics`]) and what the planner
+//! ([`crate::plan`]) streams into the writers. The path is never stored: [`ToolPath::points`]
+//! computes it one point at a time, [`ToolPath::for_each_point`] in batches on every core.
+
+use super::NoseCompensator;
+use super::reach::{self, Reach};
+use crate::field::FieldError;
+use crate::job::{Compensation, Job, Sampling, StrategySpec};
+use crate::parallel::fill_chunks;
+use crate::path::{PathError, PathPoint, Spiral, SpiralPoint};
+use crate::progress::{PROGRESS_EVERY, Progress};
+use crate::surface::{Surface, UndefinedError};
+use std::ops::ControlFlow;
+
+/// Points compensated per batch before they are handed on: bounds the memory of a run.
+const BATCH: usize = 16_384;
+
+/// The spiral of a strategy on `surface`, by the builder of its sampling: [`Spiral::new`] for
+/// constant angle and constant arc, [`crate::path::hcaa::spiral`] for `hcaa` and `adaptive`
+/// (which reads the one-way compensated tip height of `nose`),
+/// [`crate::path::space_spiral::spiral`] for `space_spiral`. Field errors are named from
+/// `strategy`.
+pub fn spiral(
+    outer_radius_mm: f64,
+    strategy: &StrategySpec,
+    surface: &dyn Surface,
+    nose: &NoseCompensator,
+) -> Result<Spiral, PathError> {
+    let st = strategy;
+    let within = |e: FieldError| PathError::from(e.within("strategy"));
+    match st.sampling {
+        Sampling::ConstantAngle { .. } | Sampling::ConstantArc { .. } => Spiral::new(
+            outer_radius_mm,
+            st.feed_mm_per_rev,
+            &st.sampling,
+            st.direction,
+            st.start_angle_deg,
+        )
+        .map_err(within),
+        Sampling::Hcaa { .. } | Sampling::Adaptive { .. } => {
+            let tip = |rho: f64, theta: f64| nose.tip_height(surface, rho, theta);
+            crate::path::hcaa::spiral(outer_radius_mm, st, surface, &tip)
+        }
+        Sampling::SpaceSpiral {
+            points_per_rev,
+            base_spans,
+        } => crate::path::space_spiral::spiral(
+            outer_radius_mm,
+            st,
+            surface,
+            points_per_rev,
+            base_spans,
+        )
+        .map_err(within),
+    }
+}
+
+/// A checked job's tool path, ready to stream.
+#[derive(Debug)]
+pub struct ToolPath {
+    job: Job,
+    surface: Box<dyn Surface>,
+    spiral: Spiral,
+    nose: NoseCompensator,
+}
+
+impl ToolPath {
+    /// Validates the job and builds its surface, compensator and spiral.
+    pub fn new(job: &Job) -> Result<Self, PathError> {
+        job.validate()?;
+        let surface = job.build_surface()?;
+        // The material ends at the part edge, wherever the spiral starts.
+        let nose =
+            NoseCompensator::new(&job.tool, surface.feature_length_mm(), job.part_radius_mm())
+                .map_err(|e| e.within("tool"))?;
+        let spiral = spiral(
+            job.outer_radius_mm(),
+            &job.strategy,
+            surface.as_ref(),
+            &nose,
+        )?;
+        Ok(Self {
+            job: job.clone(),
+            surface,
+            spiral,
+            nose,
+        })
+    }
+
+    /// The job.
+    pub fn job(&self) -> &Job {
+        &self.job
+    }
+
+    /// The surface.
+    pub fn surface(&self) -> &dyn Surface {
+        self.surface.as_ref()
+    }
+
+    /// The spiral.
+    pub fn spiral(&self) -> &Spiral {
+        &self.spiral
+    }
+
+    /// The compensator.
+    pub fn nose(&self) -> &NoseCompensator {
+        &self.nose
+    }
+
+    /// The one-way tip height over (ρ, θ) ([`NoseCompensator::tip_height`]).
+    pub fn tip_height(&self, rho: f64, theta: f64) -> Result<f64, UndefinedError> {
+        self.nose.tip_height(self.surface(), rho, theta)
+    }
+
+    /// The compensated path, streamed.
+    pub fn points(&self) -> impl Iterator<Item = Result<PathPoint, UndefinedError>> + '_ {
+        self.spiral
+            .points()
+            .enumerate()
+            .map(move |(i, sp)| Ok(self.path_point(i as u64, sp)?.0))
+    }
+
+    /// The compensated path point of the `index`-th spiral point, and whether the two-way
+    /// offset folds there (a loop; always false one-way). Two-way, `rho` and `theta` are the
+    /// nose centre's X and C ([`NoseCompensator::compensate_two_way`]).
+    fn path_point(&self, index: u64, sp: SpiralPoint) -> Result<(PathPoint, bool), UndefinedError> {
+        let (s, c) = sp.theta.sin_cos();
+        if self.job.strategy.compensation == Compensation::TwoWay {
+            let t = self
+                .nose
+                .compensate_two_way(self.surface.as_ref(), sp.rho, c, s)?;
+            return Ok((
+                PathPoint {
+                    index,
+                    rho: t.x,
+                    theta: sp.theta + t.c_offset,
+                    z: t.z_tip,
+                    contact: t.contact,
+                    contact_angle: t.angle,
+                    at_arc_end: t.at_arc_end,
+                },
+                t.folds,
+            ));
+        }
+        let contact = self.nose.compensate(self.surface.as_ref(), sp.rho, c, s)?;
+        Ok((
+            PathPoint {
+                index,
+                rho: sp.rho,
+                theta: sp.theta,
+                z: contact.z_tip,
+                contact: [contact.rho * c, contact.rho * s, contact.z],
+                contact_angle: contact.angle,
+                at_arc_end: contact.at_arc_end,
+            },
+            false,
+        ))
+    }
+
+    /// Compensates a batch of spiral points starting at path index `first` into `out`, in
+    /// order, split over the machine's cores ([`crate::parallel`]). Each point is computed
+    /// alone, so the result is the same whatever the split; the first error in path order wins.
+    fn compensate_batch(
+        &self,
+        first: u64,
+        input: &[SpiralPoint],
+        out: &mut Vec<(PathPoint, bool)>,
+    ) -> Result<(), UndefinedError> {
+        out.clear();
+        out.resize(input.len(), (PathPoint::default(), false));
+        fill_chunks(out, |start, slots| {
+            for (j, slot) in slots.iter_mut().enumerate() {
+                let k = start + j;
+                *slot = self.path_point(first + k as u64, input[k])?;
+            }
+            Ok(())
+        })
+    }
+
+    /// Zones where the nose cannot reach the surface (see [`crate::tool::reach`]).
+    pub fn concave_zones(&self) -> Result<Reach, UndefinedError> {
+        reach::concave_zones(
+            self.surface.as_ref(),
+            &self.nose,
+            self.spiral.start_radius_mm(),
+        )
+    }
+
+    /// Computes every point in order, compensating batches of 16 384 points on every core, and
+    /// hands each to `visit` with whether the two-way offset folds there; `progress` is called
+    /// every [`PROGRESS_EVERY`] points and at the end (`Break` cancels). Returns the count.
+    pub fn for_each_point<E: From<PathError>>(
+        &self,
+        progress: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+        visit: &mut dyn FnMut(&PathPoint, bool) -> Result<(), E>,
+    ) -> Result<u64, E> {
+        let total = self.spiral.point_count_hint();
+        let mut done = 0u64;
+        let mut spiral = self.spiral.points();
+        let (mut input, mut output) = (Vec::with_capacity(BATCH), Vec::with_capacity(BATCH));
+        loop {
+            input.clear();
+            input.extend(spiral.by_ref().take(BATCH));
+            if input.is_empty() {
+                break;
+            }
+            self.compensate_batch(done, &input, &mut output)
+                .map_err(|e| E::from(e.into()))?;
+            for (p, folds) in &output {
+                visit(p, *folds)?;
+                done += 1;
+                if done.is_multiple_of(PROGRESS_EVERY)
+                    && progress(Progress { done, total }).is_break()
+                {
+                    return Err(PathError::Cancelled.into());
+                }
+            }
+        }
+        let _ = progress(Progress { done, total: done });
+        Ok(done)
+    }
+}

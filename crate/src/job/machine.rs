@@ -18,6 +18,10 @@
 use crate::field::{FieldError, positive};
 use serde::{Deserialize, Serialize};
 
+/// The fastest spindle accepted, rev/min: ten times the fastest air-bearing spindles of
+/// diamond-turning lathes, so that a typo (rev/s for rev/min, a stray exponent) is caught.
+pub const MAX_SPINDLE_RPM: f64 = 100_000.0;
+
 /// The machine.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -86,7 +90,15 @@ impl MachineSpec {
     ///            "fts.stroke_um = 0: must be a finite number > 0");
     /// ```
     pub fn validate(&self) -> Result<(), FieldError> {
-        positive("spindle_rpm", self.spindle_rpm)?;
+        if positive("spindle_rpm", self.spindle_rpm)? > MAX_SPINDLE_RPM {
+            return Err(FieldError::new(
+                "spindle_rpm",
+                self.spindle_rpm,
+                format!(
+                    "at most {MAX_SPINDLE_RPM} rev/min (no diamond-turning spindle runs faster)"
+                ),
+            ));
+        }
         if let Some(rate) = self.block_rate_hz {
             positive("block_rate_hz", rate)?;
         }

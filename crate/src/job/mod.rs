@@ -24,10 +24,13 @@ pub use output::{Dialect, FeedMode, OutputSpec};
 pub use strategy::{Compensation, Direction, Sampling, SplitSpec, StrategySpec};
 pub use tool::{ToolAngles, ToolSpec};
 
-use crate::field::{FieldError, finite, positive};
+use crate::field::{FieldError, finite, join_path, positive};
 use crate::surface::{PartDisc, Reframed, Surface, SurfaceSpec};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
+
+/// The longest job name: it names the output files and is written into the program's header.
+pub const MAX_NAME_CHARS: usize = 128;
 
 /// The example job for the paper 004 lens array, planned by the page on load.
 pub const DEFAULT_JOB: &str = include_str!("../../jobs/lens-array-paper004.json");
@@ -91,24 +94,54 @@ pub enum JobError {
 
 impl Job {
     /// Parses a job document (checks syntax and field names, not values).
+    /// A UTF-8 byte-order mark in front of the text is skipped; JSON syntax errors give the line
+    /// and column.
     pub fn from_json(text: &str) -> Result<Self, JobError> {
-        Self::deserialize_from(&mut serde_json::Deserializer::from_str(text))
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        let de = &mut serde_json::Deserializer::from_str(text);
+        serde_path_to_error::deserialize::<_, UniqueKeys>(de).map_err(|e| {
+            JobError::Syntax(join_path(&e.path().to_string(), &e.inner().to_string()))
+        })?;
+        let value: serde_json::Value =
+            serde_json::from_str(text).map_err(|e| JobError::Syntax(e.to_string()))?;
+        Self::from_value(value)
     }
 
-    /// Reads a job from any serde deserializer (JSON text here, a JavaScript object on the
-    /// page); errors name the path of the offending field, e.g.
-    /// `job: strategy.sampling.points_per_rev: invalid type: …`.
+    /// Reads a job from any serde deserializer (JSON text, a JavaScript object on the page); see
+    /// [`Job::from_value`].
     pub fn deserialize_from<'de, D: serde::Deserializer<'de>>(de: D) -> Result<Self, JobError>
     where
         D::Error: std::fmt::Display,
     {
-        serde_path_to_error::deserialize(de).map_err(|e| {
-            let path = e.path().to_string();
-            match path.as_str() {
-                "." | "" => JobError::Syntax(e.inner().to_string()),
-                _ => JobError::Syntax(format!("{path}: {}", e.inner())),
-            }
-        })
+        use serde::Deserialize;
+        let value =
+            serde_json::Value::deserialize(de).map_err(|e| JobError::Syntax(e.to_string()))?;
+        Self::from_value(value)
+    }
+
+    /// Reads a job from a JSON value, which must be an object; errors name the path of the
+    /// offending field, inside a surface family too (`job: surface.phase_y_deg: invalid type:
+    /// string "a", expected f64`).
+    ///
+    /// ```
+    /// let e = spiralcam::job::Job::from_json("[\"a\", 1]").unwrap_err();
+    /// assert_eq!(e.to_string(), "job: must be a JSON object {…}, not an array");
+    /// ```
+    pub fn from_value(value: serde_json::Value) -> Result<Self, JobError> {
+        if !value.is_object() {
+            let kind = match value {
+                serde_json::Value::Array(_) => "an array",
+                serde_json::Value::String(_) => "a string",
+                serde_json::Value::Number(_) => "a number",
+                serde_json::Value::Bool(_) => "a boolean",
+                _ => "null",
+            };
+            return Err(JobError::Syntax(format!(
+                "must be a JSON object {{…}}, not {kind}"
+            )));
+        }
+        serde_path_to_error::deserialize(value)
+            .map_err(|e| JobError::Syntax(join_path(&e.path().to_string(), &e.inner().to_string())))
     }
 
     /// The page's default job: paper 004's lens array.
@@ -170,10 +203,15 @@ impl Job {
         &mut self,
         mut read: impl FnMut(&str) -> Result<String, String>,
     ) -> Result<(), JobError> {
-        for file in self.surface.data_files_mut() {
+        for (field, file) in self.surface.data_files_mut() {
+            file.check(&format!("surface.{field}"))?;
             if let (None, Some(path)) = (&file.text, &file.path) {
                 let text = read(path).map_err(|e| {
-                    FieldError::new("surface", path, format!("cannot be read: {e}"))
+                    FieldError::new(
+                        format!("surface.{field}.path"),
+                        path,
+                        format!("cannot be read: {e}"),
+                    )
                 })?;
                 file.text = Some(text);
             }
@@ -213,19 +251,40 @@ impl Job {
     /// Checks the values that no single module owns.
     pub fn validate(&self) -> Result<(), JobError> {
         if self.name.is_empty()
+            || self.name.len() > MAX_NAME_CHARS
             || !self
                 .name
                 .chars()
                 .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
         {
+            let shown: String = self.name.chars().take(40).collect();
+            let shown = if shown.len() < self.name.len() {
+                format!("{shown}… ({} characters)", self.name.chars().count())
+            } else {
+                shown
+            };
             return Err(FieldError::new(
                 "name",
-                &self.name,
-                "letters, digits, '-', '_' or '.', not empty",
+                shown,
+                format!("letters, digits, '-', '_' or '.', 1 to {MAX_NAME_CHARS} characters"),
             )
             .into());
         }
         positive("part.diameter_mm", self.part.diameter_mm)?;
+        let r = self.tool.nose_radius_mm;
+        if r > self.part.diameter_mm {
+            return Err(FieldError::new(
+                "tool.nose_radius_mm",
+                r,
+                format!(
+                    "must not exceed the part's diameter {} mm (part.diameter_mm): a nose larger \
+                     than the part",
+                    self.part.diameter_mm
+                ),
+            )
+            .into());
+        }
+
         if let Some([x, y]) = self.part.normal_axis_at_mm {
             finite("part.normal_axis_at_mm[0]", x)?;
             finite("part.normal_axis_at_mm[1]", y)?;
@@ -248,6 +307,64 @@ impl Job {
         }
         self.output.validate().map_err(|e| e.within("output"))?;
         Ok(())
+    }
+}
+
+/// Any JSON value whose objects have no key twice: a first pass over a job's text, since a
+/// [`serde_json::Value`] keeps the last of two equal keys without a word.
+struct UniqueKeys;
+
+impl<'de> serde::Deserialize<'de> for UniqueKeys {
+    fn deserialize<D: serde::Deserializer<'de>>(de: D) -> Result<Self, D::Error> {
+        de.deserialize_any(UniqueKeys)
+    }
+}
+
+impl<'de> serde::de::Visitor<'de> for UniqueKeys {
+    type Value = UniqueKeys;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a JSON value")
+    }
+
+    fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<Self, A::Error> {
+        let mut seen = std::collections::HashSet::new();
+        while let Some(key) = map.next_key::<String>()? {
+            if !seen.insert(key.clone()) {
+                return Err(serde::de::Error::custom(format!("duplicate field `{key}`")));
+            }
+            map.next_value::<UniqueKeys>()?;
+        }
+        Ok(UniqueKeys)
+    }
+
+    fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Self, A::Error> {
+        while seq.next_element::<UniqueKeys>()?.is_some() {}
+        Ok(UniqueKeys)
+    }
+
+    fn visit_bool<E>(self, _: bool) -> Result<Self, E> {
+        Ok(UniqueKeys)
+    }
+
+    fn visit_i64<E>(self, _: i64) -> Result<Self, E> {
+        Ok(UniqueKeys)
+    }
+
+    fn visit_u64<E>(self, _: u64) -> Result<Self, E> {
+        Ok(UniqueKeys)
+    }
+
+    fn visit_f64<E>(self, _: f64) -> Result<Self, E> {
+        Ok(UniqueKeys)
+    }
+
+    fn visit_str<E>(self, _: &str) -> Result<Self, E> {
+        Ok(UniqueKeys)
+    }
+
+    fn visit_unit<E>(self) -> Result<Self, E> {
+        Ok(UniqueKeys)
     }
 }
 

@@ -316,13 +316,18 @@ impl Spiral {
             zones,
             explicit: None,
         };
-        let points = spiral.point_count_hint();
-        if points > MAX_POINTS {
+        let points = spiral.point_count_estimate();
+        if !(points <= MAX_POINTS as f64) {
+            // The count goes as 1/f for every sampling: the feed that keeps it under the cap.
+            let least = feed * points / MAX_POINTS as f64 * (1.0 + 1e-6);
             return Err(FieldError::new(
                 "feed_mm_per_rev",
                 feed,
                 format!(
-                    "with this sampling gives about {points:.3e} points; at most {MAX_POINTS:.0e} are planned"
+                    "gives about {} points with this sampling; at most {MAX_POINTS:.0e} are \
+                     planned: a feed of at least {} mm/rev keeps this part under the limit",
+                    crate::field::short(points),
+                    crate::field::short(least),
                 ),
             ));
         }
@@ -352,21 +357,35 @@ impl Spiral {
         }
     }
 
-    fn angle_steps(&self, n: u32) -> u64 {
-        // Guard against N·R/f landing a hair above an integer through rounding. The cast
-        // saturates; `new` refuses anything above MAX_POINTS.
+    /// The angle steps K = ⌈N·R/f⌉ of constant-angle sampling, in floating point.
+    fn angle_steps_exact(&self, n: u32) -> f64 {
+        // Guard against N·R/f landing a hair above an integer through rounding.
         let exact = n as f64 * self.outer_radius / self.feed;
-        (exact * (1.0 - 4.0 * f64::EPSILON)).ceil().max(1.0) as u64
+        (exact * (1.0 - 4.0 * f64::EPSILON)).ceil().max(1.0)
+    }
+
+    /// K as an integer: exact, since a checked spiral has at most [`MAX_POINTS`] points.
+    fn angle_steps(&self, n: u32) -> u64 {
+        self.angle_steps_exact(n) as u64
     }
 
     /// The number of points (exact for constant angle, an estimate within a few points for
-    /// constant arc), for progress bars.
+    /// constant arc), for progress bars; at most `u64::MAX`.
     pub fn point_count_hint(&self) -> u64 {
+        // The cast saturates (and NaN gives 0, which no checked spiral has).
+        self.point_count_estimate() as u64
+    }
+
+    /// The number of points as [`Spiral::point_count_hint`], computed in floating point so that
+    /// an absurd feed gives an absurd count (1e19, 1e300) instead of one that wraps.
+    pub fn point_count_estimate(&self) -> f64 {
         if let Some(p) = &self.explicit {
-            return p.len() as u64;
+            return p.len() as f64;
         }
         match self.sampling {
-            Sampling::ConstantAngle { points_per_rev } => self.angle_steps(points_per_rev) + 1,
+            Sampling::ConstantAngle { points_per_rev } => {
+                self.angle_steps_exact(points_per_rev) + 1.0
+            }
             Sampling::ConstantArc {
                 arc_length_mm,
                 max_angle_step_deg,
@@ -376,7 +395,7 @@ impl Spiral {
                 // Inside ρ_cap the cap binds: the angle steps are `cap`.
                 let rho_cap = (arc_length_mm / cap).min(self.outer_radius);
                 let arc = arc_length(b, self.outer_radius / b) - arc_length(b, rho_cap / b);
-                ((arc / arc_length_mm).ceil() + (rho_cap / b / cap).ceil()) as u64 + 1
+                (arc / arc_length_mm).ceil() + (rho_cap / b / cap).ceil() + 1.0
             }
             Sampling::Hcaa { .. } | Sampling::Adaptive { .. } | Sampling::SpaceSpiral { .. } => {
                 let b = self.feed / TAU;
@@ -387,7 +406,7 @@ impl Spiral {
                     n += z.step.count(b, lo, hi).ceil() + 1.0;
                     hi = lo;
                 }
-                n as u64
+                n
             }
         }
     }
@@ -636,7 +655,12 @@ mod tests {
         };
         let e = Spiral::new(10.0, 1e-9, &s, Direction::Ccw, 0.0).unwrap_err();
         assert_eq!(e.field, "feed_mm_per_rev");
-        assert!(e.allowed.contains("1.000e12 points"), "{e}");
+        assert!(e.allowed.contains("about 1e12 points"), "{e}");
+        // The feed that would do: 10 mm × 100 points/rev / 1e9 points.
+        assert!(e.allowed.contains("at least 1.000001e-6 mm/rev"), "{e}");
+        // A feed so small that the count overflows a u64 is refused, not wrapped to 0.
+        let e = Spiral::new(10.0, 9.7e-17, &s, Direction::Ccw, 0.0).unwrap_err();
+        assert!(e.to_string().starts_with("feed_mm_per_rev = 9.7e-17: gives about 1.030928e19"), "{e}");
         let s = Sampling::ConstantArc {
             arc_length_mm: 1e-9,
             max_angle_step_deg: 1.0,

@@ -69,7 +69,7 @@ mod sphere;
 
 use super::asphere::Asphere;
 use super::{Line, Local, PartDisc, Surface, UndefinedError};
-use crate::field::{FieldError, positive};
+use crate::field::{FieldError, length};
 use index::DiscIndex;
 use rooting::Parent;
 use serde::{Deserialize, Serialize};
@@ -561,12 +561,12 @@ impl Dimensions {
             }
         }
         Ok(Self {
-            element_pitch: positive("element_pitch_mm", spec.element_pitch_mm)?,
-            element_radius: positive("element_radius_mm", spec.element_radius_mm)?,
-            element_height: positive("element_height_mm", spec.element_height_mm)?,
-            lenslet_pitch: positive("lenslet_pitch_mm", spec.lenslet_pitch_mm)?,
-            lenslet_radius: positive("lenslet_radius_mm", spec.lenslet_radius_mm)?,
-            lenslet_height: positive("lenslet_height_mm", spec.lenslet_height_mm)?,
+            element_pitch: length("element_pitch_mm", spec.element_pitch_mm)?,
+            element_radius: length("element_radius_mm", spec.element_radius_mm)?,
+            element_height: length("element_height_mm", spec.element_height_mm)?,
+            lenslet_pitch: length("lenslet_pitch_mm", spec.lenslet_pitch_mm)?,
+            lenslet_radius: length("lenslet_radius_mm", spec.lenslet_radius_mm)?,
+            lenslet_height: length("lenslet_height_mm", spec.lenslet_height_mm)?,
         })
     }
 }

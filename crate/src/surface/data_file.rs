@@ -18,9 +18,40 @@ pub struct DataFile {
     pub text: Option<String>,
 }
 
+/// The largest data file read, bytes (256 MiB): larger files are refused before they are read.
+pub const MAX_DATA_BYTES: u64 = 256 << 20;
+
+/// The longest path accepted, bytes.
+pub const MAX_PATH_BYTES: usize = 4096;
+
 impl DataFile {
+    /// Checks the sizes: the path at most [`MAX_PATH_BYTES`], the text at most
+    /// [`MAX_DATA_BYTES`]; `field` names the data file (`surface.data`).
+    pub fn check(&self, field: &str) -> Result<(), FieldError> {
+        if let Some(p) = self.path.as_ref().filter(|p| p.len() > MAX_PATH_BYTES) {
+            return Err(FieldError::new(
+                format!("{field}.path"),
+                format!("{} bytes", p.len()),
+                format!("a path of at most {MAX_PATH_BYTES} bytes"),
+            ));
+        }
+        if let Some(t) = self
+            .text
+            .as_ref()
+            .filter(|t| t.len() as u64 > MAX_DATA_BYTES)
+        {
+            return Err(FieldError::new(
+                format!("{field}.text"),
+                format!("{} bytes", t.len()),
+                format!("at most {MAX_DATA_BYTES} bytes (256 MiB)"),
+            ));
+        }
+        Ok(())
+    }
+
     /// The contents, or an error naming `field` when only a path was given and not read.
     pub fn text(&self, field: &str) -> Result<&str, FieldError> {
+        self.check(field)?;
         match (&self.text, &self.path) {
             (Some(t), _) => Ok(t),
             (None, Some(p)) => Err(FieldError::new(

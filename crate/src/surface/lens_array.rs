@@ -10,7 +10,7 @@
 //! A lenslet sits on the spindle axis; grid rows run along X.
 
 use super::{Line, Local, PartDisc, Surface, UndefinedError};
-use crate::field::{FieldError, positive};
+use crate::field::{FieldError, length};
 use serde::{Deserialize, Serialize};
 
 /// The most lenslets on a part.
@@ -88,9 +88,9 @@ impl LensArray {
     /// Checks a spec and builds the surface for the part disc `part`.
     pub fn new(spec: &LensArraySpec, part: PartDisc) -> Result<Self, FieldError> {
         let part_radius_mm = part.radius_mm;
-        let r = positive("lens_radius_mm", spec.lens_radius_mm)?;
-        let a = positive("aperture_mm", spec.aperture_mm)?;
-        let p = positive("pitch_mm", spec.pitch_mm)?;
+        let r = length("lens_radius_mm", spec.lens_radius_mm)?;
+        let a = length("aperture_mm", spec.aperture_mm)?;
+        let p = length("pitch_mm", spec.pitch_mm)?;
         if a > p {
             return Err(FieldError::new(
                 "aperture_mm",

@@ -40,7 +40,7 @@ pub mod toroid;
 pub mod xy_polynomial;
 pub mod zernike;
 
-use crate::field::FieldError;
+use crate::field::{FieldError, split_tag, tagged_variant};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
@@ -246,8 +246,10 @@ pub trait Surface: Send + Sync + std::fmt::Debug {
     fn describe(&self) -> String;
 }
 
-/// The surface of a job, one of the families (JSON: an object with `"type"` naming the family).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// The surface of a job, one of the families (JSON: an object with `"type"` naming the family,
+/// one of [`SURFACE_TYPES`]). An error inside a family's fields names its path
+/// (`surface.base.radius_mm`), which serde's derived tagged enums do not.
+#[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "type", rename_all = "snake_case")]
 pub enum SurfaceSpec {
     /// Even asphere (plane and sphere included).
@@ -282,6 +284,50 @@ pub enum SurfaceSpec {
     Composite(CompositeSpec),
 }
 
+/// The values of a surface's `"type"`, one per [`SurfaceSpec`] variant.
+pub const SURFACE_TYPES: &[&str] = &[
+    "asphere",
+    "xy_polynomial",
+    "lens_array",
+    "sinusoid",
+    "zernike",
+    "biconic",
+    "toroid",
+    "off_axis_conic",
+    "tilted_flat",
+    "compound_eye",
+    "pal",
+    "nurbs",
+    "step_face",
+    "scattered",
+    "composite",
+];
+
+impl<'de> Deserialize<'de> for SurfaceSpec {
+    fn deserialize<D: serde::Deserializer<'de>>(de: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        let (tag, c) = split_tag(de, "type")?;
+        Ok(match tag.as_str() {
+            "asphere" => SurfaceSpec::Asphere(tagged_variant(c)?),
+            "xy_polynomial" => SurfaceSpec::XyPolynomial(tagged_variant(c)?),
+            "lens_array" => SurfaceSpec::LensArray(tagged_variant(c)?),
+            "sinusoid" => SurfaceSpec::Sinusoid(tagged_variant(c)?),
+            "zernike" => SurfaceSpec::Zernike(tagged_variant(c)?),
+            "biconic" => SurfaceSpec::Biconic(tagged_variant(c)?),
+            "toroid" => SurfaceSpec::Toroid(tagged_variant(c)?),
+            "off_axis_conic" => SurfaceSpec::OffAxisConic(tagged_variant(c)?),
+            "tilted_flat" => SurfaceSpec::TiltedFlat(tagged_variant(c)?),
+            "compound_eye" => SurfaceSpec::CompoundEye(tagged_variant(c)?),
+            "pal" => SurfaceSpec::Pal(tagged_variant(c)?),
+            "nurbs" => SurfaceSpec::Nurbs(tagged_variant(c)?),
+            "step_face" => SurfaceSpec::StepFace(tagged_variant(c)?),
+            "scattered" => SurfaceSpec::Scattered(tagged_variant(c)?),
+            "composite" => SurfaceSpec::Composite(tagged_variant(c)?),
+            other => return Err(D::Error::unknown_variant(other, SURFACE_TYPES)),
+        })
+    }
+}
+
 impl SurfaceSpec {
     /// Builds the surface for a part of radius `part_radius_mm` on its axis, checking every
     /// parameter.
@@ -311,15 +357,21 @@ impl SurfaceSpec {
         })
     }
 
-    /// The data files the surface refers to (scattered points, STEP files), in composites too.
-    pub fn data_files_mut(&mut self) -> Vec<&mut DataFile> {
+    /// The data files the surface refers to (scattered points, STEP files), in composites too,
+    /// each with its field path relative to the surface (`data`, `terms[1].surface.file`).
+    pub fn data_files_mut(&mut self) -> Vec<(String, &mut DataFile)> {
         match self {
-            SurfaceSpec::StepFace(s) => vec![&mut s.file],
-            SurfaceSpec::Scattered(s) => vec![&mut s.data],
+            SurfaceSpec::StepFace(s) => vec![("file".into(), &mut s.file)],
+            SurfaceSpec::Scattered(s) => vec![("data".into(), &mut s.data)],
             SurfaceSpec::Composite(c) => {
-                let mut files = c.base.data_files_mut();
-                for t in &mut c.terms {
-                    files.extend(t.surface.data_files_mut());
+                let mut files = Vec::new();
+                for (f, d) in c.base.data_files_mut() {
+                    files.push((format!("base.{f}"), d));
+                }
+                for (k, t) in c.terms.iter_mut().enumerate() {
+                    for (f, d) in t.surface.data_files_mut() {
+                        files.push((format!("terms[{k}].surface.{f}"), d));
+                    }
                 }
                 files
             }

@@ -3,7 +3,7 @@
 //! (`∂z/∂x = A·kx·cos(u)·sin(v)`, `∂²z/∂x² = −kx²·z`, `∂²z/∂x∂y = A·kx·ky·cos(u)·cos(v)`).
 
 use super::{Local, Surface, UndefinedError};
-use crate::field::{FieldError, finite, positive};
+use crate::field::{FieldError, finite, length};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
@@ -40,8 +40,8 @@ impl Sinusoid {
     /// Checks a spec and builds the surface.
     pub fn new(spec: &SinusoidSpec) -> Result<Self, FieldError> {
         let a = finite("amplitude_mm", spec.amplitude_mm)?;
-        let lx = positive("wavelength_x_mm", spec.wavelength_x_mm)?;
-        let ly = positive("wavelength_y_mm", spec.wavelength_y_mm)?;
+        let lx = length("wavelength_x_mm", spec.wavelength_x_mm)?;
+        let ly = length("wavelength_y_mm", spec.wavelength_y_mm)?;
         let px = finite("phase_x_deg", spec.phase_x_deg)?.to_radians();
         let py = finite("phase_y_deg", spec.phase_y_deg)?.to_radians();
         Ok(Self {

@@ -32,13 +32,36 @@ use serde::{Deserialize, Serialize};
 /// Which surface of the file to use: its index among the file's B-spline surfaces in file
 /// order (from 0), or its entity id `"#123"` (the id of an `ADVANCED_FACE` or `FACE_SURFACE`
 /// on it is accepted too).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum FaceChoice {
     /// Index among the B-spline surfaces, in file order, from 0.
     Index(usize),
     /// Entity id, `"#123"`.
     Id(String),
+}
+
+impl<'de> Deserialize<'de> for FaceChoice {
+    fn deserialize<D: serde::Deserializer<'de>>(de: D) -> Result<Self, D::Error> {
+        struct Choice;
+        impl serde::de::Visitor<'_> for Choice {
+            type Value = FaceChoice;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str(
+                    "the index of a B-spline surface in the file (0, 1, …) or an entity id \"#123\"",
+                )
+            }
+            fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<FaceChoice, E> {
+                usize::try_from(v)
+                    .map(FaceChoice::Index)
+                    .map_err(|_| E::invalid_value(serde::de::Unexpected::Unsigned(v), &self))
+            }
+            fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<FaceChoice, E> {
+                Ok(FaceChoice::Id(v.to_string()))
+            }
+        }
+        de.deserialize_any(Choice)
+    }
 }
 
 /// The length unit of the file's coordinates.

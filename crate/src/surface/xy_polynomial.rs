@@ -7,7 +7,7 @@
 
 use super::polynomial::Bivariate;
 use super::{Asphere, AsphereSpec, Local, Surface, UndefinedError};
-use crate::field::{FieldError, finite, positive};
+use crate::field::{FieldError, finite, length};
 use serde::{Deserialize, Serialize};
 
 /// The highest total degree i + j.
@@ -49,7 +49,7 @@ impl XyPolynomial {
     /// Checks a spec and builds the surface.
     pub fn new(spec: &XyPolynomialSpec) -> Result<Self, FieldError> {
         let base = Asphere::new(&spec.base).map_err(|e| e.within("base"))?;
-        let norm = positive("norm_radius_mm", spec.norm_radius_mm)?;
+        let norm = length("norm_radius_mm", spec.norm_radius_mm)?;
         let mut terms = Vec::with_capacity(spec.terms.len());
         for (n, t) in spec.terms.iter().enumerate() {
             let field = format!("terms[{n}]");

@@ -33,7 +33,7 @@
 
 use super::polynomial::{Bivariate, Dense};
 use super::{Asphere, AsphereSpec, Local, PartDisc, Surface, UndefinedError};
-use crate::field::{FieldError, finite, positive};
+use crate::field::{FieldError, finite, length};
 use serde::{Deserialize, Serialize};
 
 /// The highest radial order n of a Standard term.
@@ -230,7 +230,7 @@ impl Zernike {
     /// Checks a spec and builds the surface (the part disc is not needed).
     pub fn new(spec: &ZernikeSpec, _part: PartDisc) -> Result<Self, FieldError> {
         let base = Asphere::new(&spec.base).map_err(|e| e.within("base"))?;
-        let norm = positive("norm_radius_mm", spec.norm_radius_mm)?;
+        let norm = length("norm_radius_mm", spec.norm_radius_mm)?;
         let conv = spec.convention;
         let max = conv.max_terms();
         if spec.coefficients_mm.len() > max {

@@ -35,7 +35,7 @@ class PlannerWorker {
   message(m) {
     if (!this.pending || m.id !== this.pending.id) return;
     if (m.kind === 'progress') {
-      this.onProgress(this.pending.kind, m.done, m.total);
+      this.onProgress(this.pending.kind, m.done, m.total, m.stage);
       return;
     }
     const { resolve, reject } = this.pending;
@@ -513,11 +513,13 @@ async function main() {
     $('busy').hidden = !on;
     for (const b of document.querySelectorAll('[data-needs-plan]')) b.disabled = on || !status.report;
   };
-  const worker = new PlannerWorker((kind, done, total) => {
+  const worker = new PlannerWorker((kind, done, total, stage) => {
     progress.max = total;
     progress.value = done;
-    const what = { plan: 'planning', nc: 'writing NC', csv: 'writing CSV', fts: 'writing the FTS table', analyse: 'analysing' }[kind];
-    progressText.textContent = `${what}: ${Math.round((100 * done) / Math.max(total, 1))} % (${fmt(done, 0)} / ${fmt(total, 0)} points)`;
+    const writing = { nc: 'writing NC', csv: 'writing CSV', fts: 'writing the FTS table' }[kind];
+    const what = stage === 'planning' && writing ? writing : stage;
+    const items = { 'sampling bands': 'circles', 'concave zones': 'sections and zones' }[stage] ?? 'points';
+    progressText.textContent = `${what}: ${Math.round((100 * done) / Math.max(total, 1))} % (${fmt(done, 0)} / ${fmt(total, 0)} ${items})`;
   });
 
   let planned = null;

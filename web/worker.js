@@ -12,7 +12,7 @@ const ready = init();
 
 self.onmessage = async (e) => {
   const { id, kind, job } = e.data;
-  const progress = (done, total) => self.postMessage({ id, kind: 'progress', done, total });
+  const progress = (done, total, stage) => self.postMessage({ id, kind: 'progress', done, total, stage });
   try {
     await ready;
     if (kind === 'plan') {

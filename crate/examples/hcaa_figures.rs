@@ -42,9 +42,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let bands = hcaa::bands(
                 p.surface(),
                 &|rho, theta| p.tip_height(rho, theta),
-                job.outer_radius_mm(),
-                job.strategy.feed_mm_per_rev,
-                tol * 1e-3,
+                (
+                    job.outer_radius_mm(),
+                    job.strategy.feed_mm_per_rev,
+                    tol * 1e-3,
+                ),
+                &mut spiralcam::progress::ignore,
             )?;
             let h = bands.hcaa();
             let n = bands.uniform_points_per_rev();

@@ -74,7 +74,10 @@ pub fn short(v: f64) -> String {
         let decimals = (6 - a.log10().floor() as i32).max(0) as usize;
         let fixed = format!("{v:.decimals$}");
         return match fixed.contains('.') {
-            true => fixed.trim_end_matches('0').trim_end_matches('.').to_string(),
+            true => fixed
+                .trim_end_matches('0')
+                .trim_end_matches('.')
+                .to_string(),
             false => fixed,
         };
     }

@@ -116,6 +116,96 @@ impl Stats {
     }
 }
 
+/// What a job will cost.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Cost {
+    /// Points on the path.
+    pub points: u64,
+    /// Times the path is computed: 2 when the machine dynamics run first.
+    pub passes: u32,
+    /// Size of the NC program, bytes.
+    pub nc_bytes: u64,
+    /// Size of the CSV table, bytes.
+    pub csv_bytes: u64,
+    /// Size of the servo's table, bytes, for a split path.
+    pub fts_table_bytes: Option<u64>,
+    /// Memory the machine dynamics hold, bytes, when they run.
+    pub dynamics_memory_bytes: Option<u64>,
+    /// Time to plan and write, seconds (with a clock; none in the browser's estimate).
+    pub seconds: Option<f64>,
+}
+
+/// Which files a run writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Outputs {
+    /// The NC program.
+    pub nc: bool,
+    /// The CSV table.
+    pub csv: bool,
+    /// The servo's table.
+    pub fts_table: bool,
+}
+
+impl Cost {
+    /// Bytes of the files `outputs` names.
+    pub fn output_bytes(&self, outputs: Outputs) -> u64 {
+        let pick = |on: bool, bytes: u64| if on { bytes } else { 0 };
+        pick(outputs.nc, self.nc_bytes)
+            + pick(outputs.csv, self.csv_bytes)
+            + pick(outputs.fts_table, self.fts_table_bytes.unwrap_or(0))
+    }
+
+    /// One line for the user: points, the files' sizes, the time.
+    pub fn summary(&self, outputs: Outputs) -> String {
+        let mut parts = vec![format!("{} points", self.points)];
+        if outputs.nc {
+            parts.push(format!("NC {}", bytes(self.nc_bytes)));
+        }
+        if outputs.csv {
+            parts.push(format!("CSV {}", bytes(self.csv_bytes)));
+        }
+        if let (true, Some(b)) = (outputs.fts_table, self.fts_table_bytes) {
+            parts.push(format!("servo table {}", bytes(b)));
+        }
+        if let Some(m) = self.dynamics_memory_bytes {
+            parts.push(format!("dynamics {} in memory", bytes(m)));
+        }
+        if let Some(s) = self.seconds {
+            parts.push(format!("about {}", duration(s)));
+        }
+        parts.join(", ")
+    }
+}
+
+/// Bytes in kB, MB, GB (powers of 1000), 3 significant digits.
+pub fn bytes(n: u64) -> String {
+    let n = n as f64;
+    let (value, unit) = match n {
+        _ if n < 1e3 => return format!("{n} B"),
+        _ if n < 1e6 => (n / 1e3, "kB"),
+        _ if n < 1e9 => (n / 1e6, "MB"),
+        _ => (n / 1e9, "GB"),
+    };
+    format!("{} {unit}", three_digits(value))
+}
+
+/// A duration in s, min or h.
+pub fn duration(s: f64) -> String {
+    match s {
+        _ if s < 120.0 => format!("{} s", three_digits(s)),
+        _ if s < 7200.0 => format!("{} min", three_digits(s / 60.0)),
+        _ => format!("{} h", three_digits(s / 3600.0)),
+    }
+}
+
+fn three_digits(v: f64) -> String {
+    match v {
+        _ if v >= 100.0 => format!("{v:.0}"),
+        _ if v >= 10.0 => format!("{v:.1}"),
+        _ => format!("{v:.2}"),
+    }
+}
+
 /// What a plan produced and what it found.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Report {
@@ -163,8 +253,14 @@ pub struct Report {
     pub concave_zones: Vec<ConcaveZone>,
     /// Further zones with a form error below 0.1 nm, counted only.
     pub shallow_concave_zones: usize,
+    /// Zones found but not measured (beyond the most the report measures, the least sharp).
+    pub unmeasured_concave_zones: usize,
     /// Findings an operator must read before cutting.
     pub warnings: Vec<String>,
+    /// What the job was estimated to cost before it was planned (set by the caller that
+    /// admitted it, [`crate::plan::Planner::cost`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub estimate: Option<Cost>,
     /// Spectrum, split and axis checks, when the job asks for them
     /// ([`crate::dynamics::wanted`]).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -195,6 +291,15 @@ impl Report {
                 deepest.depth_um,
                 deepest.at.rho_mm,
                 deepest.at.theta_deg
+            ));
+        }
+        if reach.unmeasured_zones > 0 {
+            warnings.push(format!(
+                "{} more concave zone(s) were found but not measured (the report measures the \
+                 {} sharpest): the surface has features much finer than the nose radius {} mm",
+                reach.unmeasured_zones,
+                crate::tool::reach::MAX_MEASURED_ZONES,
+                job.tool.nose_radius_mm
             ));
         }
         if let Some((rho, theta)) = stats.first_loop {
@@ -237,8 +342,10 @@ impl Report {
             two_way_loop_points: stats.loop_points,
             first_two_way_loop_at: stats.first_loop.map(|(r, t)| Location::new(r, t)),
             concave_zones,
+            estimate: None,
             dynamics: None,
             shallow_concave_zones: reach.shallow_zones,
+            unmeasured_concave_zones: reach.unmeasured_zones,
             warnings,
         }
     }

@@ -43,9 +43,12 @@ fn bands_of(j: &Job, tol_um: f64) -> hcaa::Bands {
     hcaa::bands(
         p.surface(),
         &|rho, theta| p.tip_height(rho, theta),
-        j.outer_radius_mm(),
-        j.strategy.feed_mm_per_rev,
-        tol_um * 1e-3,
+        (
+            j.outer_radius_mm(),
+            j.strategy.feed_mm_per_rev,
+            tol_um * 1e-3,
+        ),
+        &mut spiralcam::progress::ignore,
     )
     .unwrap()
 }

@@ -15,6 +15,7 @@ use common::{Closing, DEPTH_TOL, ORACLE_TOL};
 use spiralcam::job::Job;
 use spiralcam::job::ToolSpec;
 use spiralcam::plan::Planner;
+use spiralcam::progress::ignore;
 use spiralcam::surface::{Surface, SurfaceSpec};
 use spiralcam::tool::NoseCompensator;
 use spiralcam::tool::reach::{LISTED_DEPTH_MM, concave_zones};
@@ -99,7 +100,7 @@ fn the_oracle_matches_the_closed_form_fillet_at_a_lenslet_foot() {
 fn a_convex_lens_array_reports_zones_as_deep_as_the_brute_force_closing() {
     let s = surface(CONVEX, CONVEX_PART);
     let n = nose(CONVEX_R, 100.0, s.as_ref(), CONVEX_PART);
-    let reach = concave_zones(s.as_ref(), &n, CONVEX_PART).unwrap();
+    let reach = concave_zones(s.as_ref(), &n, CONVEX_PART, &mut ignore).unwrap();
     assert!(!reach.zones.is_empty(), "{reach:?}");
     assert_eq!(reach.unlisted_zones, 0);
     for w in reach.zones.windows(2) {
@@ -179,8 +180,8 @@ fn the_planner_reports_the_same_zones() {
     assert_eq!(planner.spiral().start_radius_mm(), CONVEX_PART);
     let s = surface(CONVEX, CONVEX_PART);
     let n = nose(CONVEX_R, 100.0, s.as_ref(), CONVEX_PART);
-    let direct = concave_zones(s.as_ref(), &n, CONVEX_PART).unwrap();
-    assert_eq!(planner.concave_zones().unwrap(), direct);
+    let direct = concave_zones(s.as_ref(), &n, CONVEX_PART, &mut ignore).unwrap();
+    assert_eq!(planner.concave_zones(&mut ignore).unwrap(), direct);
 }
 
 #[test]
@@ -191,13 +192,18 @@ fn the_concave_paper004_array_reports_no_zone() {
     assert_eq!(job.tool.nose_radius_mm, 0.5);
     assert!(matches!(job.surface, SurfaceSpec::LensArray(_)));
     let planner = Planner::new(&job).unwrap();
-    let reach = planner.concave_zones().unwrap();
+    let reach = planner.concave_zones(&mut ignore).unwrap();
     assert!(reach.zones.is_empty(), "{:?}", reach.zones);
     assert_eq!(reach.unlisted_zones, 0);
     let spec = spiralcam::surface::LensArraySpec::paper004();
     let s = SurfaceSpec::LensArray(spec).build(5.0).unwrap();
     let n = nose(0.5, 100.0, s.as_ref(), 5.0);
-    assert!(concave_zones(s.as_ref(), &n, 5.0).unwrap().zones.is_empty());
+    assert!(
+        concave_zones(s.as_ref(), &n, 5.0, &mut ignore)
+            .unwrap()
+            .zones
+            .is_empty()
+    );
 }
 
 #[test]
@@ -209,7 +215,7 @@ fn a_bowl_smaller_than_the_nose_reports_a_zone_at_the_centre() {
     let json = format!(r#"{{"type":"asphere","radius_mm":{bowl}}}"#);
     let s = surface(&json, part);
     let n = nose(r, 100.0, s.as_ref(), part);
-    let reach = concave_zones(s.as_ref(), &n, part).unwrap();
+    let reach = concave_zones(s.as_ref(), &n, part, &mut ignore).unwrap();
     assert_eq!(reach.zones.len(), 1, "{reach:?}");
     let z = &reach.zones[0];
     assert_eq!(z.rho_min_mm, 0.0);
@@ -243,7 +249,7 @@ fn noses_that_fit_report_no_zone() {
     for (json, part, r) in cases {
         let s = surface(json, part);
         let n = nose(r, 100.0, s.as_ref(), part);
-        let reach = concave_zones(s.as_ref(), &n, part).unwrap();
+        let reach = concave_zones(s.as_ref(), &n, part, &mut ignore).unwrap();
         assert!(reach.zones.is_empty(), "{json} r {r}: {:?}", reach.zones);
         assert_eq!(reach.shallow_zones, 0, "{json} r {r}");
     }

@@ -47,6 +47,7 @@ use proptest::prelude::*;
 use spiralcam::job::Job;
 use spiralcam::job::ToolSpec;
 use spiralcam::plan::Planner;
+use spiralcam::progress::ignore;
 use spiralcam::surface::{CompoundEye, CompoundEyeSpec, Line, PartDisc, Surface, SurfaceSpec};
 use spiralcam::tool::NoseCompensator;
 use std::f64::consts::PI;
@@ -491,7 +492,7 @@ fn the_concave_zone_report_finds_the_valleys_between_lenslets() {
         (oracle - fillet).abs() < ORACLE_TOL,
         "oracle {oracle} vs closed form {fillet}"
     );
-    let reach = planner.concave_zones().unwrap();
+    let reach = planner.concave_zones(&mut ignore).unwrap();
     // At least the valley network of each of the seven elements.
     assert!(reach.zones.len() >= 7, "{reach:?}");
     // The valley at (xk, 0°) lies in a zone.

@@ -43,18 +43,24 @@ pub fn version() -> String {
     env!("CARGO_PKG_VERSION").to_string()
 }
 
-fn read_job(job: JsValue) -> Result<Planner, JsError> {
-    let job = Job::deserialize_from(serde_wasm_bindgen::Deserializer::from(job))
-        .map_err(|e| JsError::new(&e.to_string()))?;
-    Planner::new(&job).map_err(|e| JsError::new(&e.to_string()))
+fn parse_job(job: JsValue) -> Result<Job, JsError> {
+    Job::deserialize_from(serde_wasm_bindgen::Deserializer::from(job))
+        .map_err(|e| JsError::new(&e.to_string()))
 }
 
-/// Calls `progress(done, total)` in JavaScript; a thrown exception cancels the plan.
+fn read_job(job: JsValue, progress: &js_sys::Function) -> Result<Planner, JsError> {
+    Planner::with_progress(&parse_job(job)?, &mut reporter(progress))
+        .map_err(|e| JsError::new(&e.to_string()))
+}
+
+/// Calls `progress(done, total, stage)` in JavaScript (`stage` as `spiralcam::progress::Stage::label` names it);
+/// a thrown exception cancels the plan.
 fn reporter(progress: &js_sys::Function) -> impl FnMut(Progress) -> ControlFlow<()> + '_ {
     move |p: Progress| {
         let done = JsValue::from_f64(p.done as f64);
         let total = JsValue::from_f64(p.total as f64);
-        match progress.call2(&JsValue::NULL, &done, &total) {
+        let stage = JsValue::from_str(p.stage.label());
+        match progress.call3(&JsValue::NULL, &done, &total, &stage) {
             Ok(_) => ControlFlow::Continue(()),
             Err(_) => ControlFlow::Break(()),
         }
@@ -139,7 +145,7 @@ impl Planned {
 /// called every 65 536 points.
 #[wasm_bindgen]
 pub fn plan(job: JsValue, progress: &js_sys::Function) -> Result<Planned, JsError> {
-    let planner = read_job(job)?;
+    let planner = read_job(job, progress)?;
     let total = planner.spiral().point_count_hint();
     let mut display = DisplayPath::new(total, planner.spiral().revolutions(), DISPLAY_POINTS);
     let sinks = Sinks {
@@ -203,7 +209,7 @@ fn output_file(
     progress: &js_sys::Function,
     sinks: impl FnOnce(&mut Vec<u8>) -> Sinks<'_>,
 ) -> Result<Vec<u8>, JsError> {
-    let planner = read_job(job)?;
+    let planner = read_job(job, progress)?;
     let mut out = Vec::new();
     planner
         .run_with_dynamics(sinks(&mut out), &mut reporter(progress))
@@ -263,7 +269,7 @@ pub fn analyse(
     size: usize,
     progress: &js_sys::Function,
 ) -> Result<Accuracy, JsError> {
-    let planner = read_job(job)?;
+    let planner = read_job(job, progress)?;
     let analysis = Analysis::run(&planner, size, &mut reporter(progress))
         .map_err(|e| JsError::new(&e.to_string()))?;
     Ok(Accuracy { analysis })
@@ -311,12 +317,15 @@ impl PowerMaps {
 /// index), else `undefined`.
 #[wasm_bindgen]
 pub fn power_maps(job: JsValue, size: usize) -> Result<Option<PowerMaps>, JsError> {
-    let planner = read_job(job)?;
-    let SurfaceSpec::Pal(pal) = &planner.job().surface else {
+    let job = parse_job(job)?;
+    let SurfaceSpec::Pal(pal) = &job.surface else {
         return Ok(None);
     };
-    let part = PartDisc::centred(planner.job().part_radius_mm());
-    let map = PowerMap::sample(planner.surface(), part, pal.refractive_index, size)
+    let part = PartDisc::centred(job.part_radius_mm());
+    let surface = job
+        .build_surface()
+        .map_err(|e| JsError::new(&e.to_string()))?;
+    let map = PowerMap::sample(surface.as_ref(), part, pal.refractive_index, size)
         .map_err(|e| JsError::new(&e.to_string()))?;
     Ok(Some(PowerMaps { map }))
 }
@@ -330,5 +339,7 @@ pub fn colormap_stops() -> Vec<f32> {
 /// Checks `job` without planning; throws the first field error.
 #[wasm_bindgen]
 pub fn check_job(job: JsValue) -> Result<(), JsError> {
-    read_job(job).map(|_| ())
+    Planner::new(&parse_job(job)?)
+        .map(|_| ())
+        .map_err(|e| JsError::new(&e.to_string()))
 }

@@ -31,7 +31,7 @@ use crate::field::FieldError;
 use crate::job::Compensation;
 use crate::path::PathError;
 use crate::path::space_spiral::{Survey, survey};
-use crate::progress::{PROGRESS_EVERY, Progress};
+use crate::progress::{PROGRESS_EVERY, Progress, Stage};
 use crate::raster::Raster;
 use crate::tool::ToolPath;
 use crate::tool::geometry::{ToolGeometryCheck, ToolGeometryReport};
@@ -99,12 +99,22 @@ impl Analysis {
                 f.push(&p)?;
             }
             done += 1;
-            if done.is_multiple_of(PROGRESS_EVERY) && progress(Progress { done, total }).is_break()
+            if done.is_multiple_of(PROGRESS_EVERY)
+                && progress(Progress {
+                    stage: Stage::Analysis,
+                    done,
+                    total,
+                })
+                .is_break()
             {
                 return Err(PathError::Cancelled);
             }
         }
-        let _ = progress(Progress { done, total });
+        let _ = progress(Progress {
+            stage: Stage::Analysis,
+            done,
+            total,
+        });
         let job = tool_path.job();
         let revolution = match survey(
             tool_path.surface(),

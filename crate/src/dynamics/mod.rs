@@ -34,7 +34,7 @@ use crate::job::MachineSpec;
 use crate::job::SplitSpec;
 use crate::path::PathError;
 use crate::path::PathPoint;
-use crate::progress::Progress;
+use crate::progress::{Progress, Stage};
 use crate::tool::ToolPath;
 use serde::Serialize;
 use std::ops::ControlFlow;
@@ -349,7 +349,7 @@ impl Dynamics {
             .into());
         }
         let mut columns = Columns::with_capacity(usize::try_from(total).unwrap_or(0));
-        path.for_each_point(progress, &mut |p, _| {
+        path.for_each_point(Stage::Dynamics, progress, &mut |p, _| {
             columns.push(p);
             Ok::<(), DynamicsError>(())
         })?;

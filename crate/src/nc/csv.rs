@@ -56,6 +56,7 @@ impl<W: Write> CsvWriter<W> {
                     index: p.index,
                     what,
                     value: v,
+                    at: Some((p.rho, p.theta)),
                 });
             }
         }

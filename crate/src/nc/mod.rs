@@ -19,8 +19,8 @@
 //! Check signs and words against your controller; each is an option. Output is reproducible: no
 //! dates, no host names. Comments are plain ASCII.
 
-mod csv;
-mod fts_table;
+pub mod csv;
+pub mod fts_table;
 mod iso;
 mod moore;
 pub mod number;
@@ -134,9 +134,15 @@ pub struct Words {
 impl Conventions {
     /// The words of a point at (ρ, θ, z), or an error naming the value that cannot be written.
     pub fn words(&self, index: u64, rho: f64, theta: f64, z: f64) -> Result<Words, NcError> {
-        let bad = |what: &'static str, value: f64| NcError::Unwritable { index, what, value };
+        let at = Some((rho, theta));
+        let bad = |what: &'static str, value: f64| NcError::Unwritable {
+            index,
+            what,
+            value,
+            at,
+        };
         let x = scaled(self.x_sign * rho, self.decimals_xz).ok_or(bad("X", rho))?;
-        let z = self.z_units(index, z)?;
+        let z = scaled(self.z_sign * z, self.decimals_xz).ok_or(bad("Z", z))?;
         let mut c =
             scaled(self.c_sign * theta.to_degrees(), self.decimals_c).ok_or(bad("C", theta))?;
         if self.wrap_c {
@@ -171,6 +177,7 @@ impl Conventions {
             index,
             what: "Z",
             value: z,
+            at: None,
         })
     }
 }
@@ -178,15 +185,18 @@ impl Conventions {
 /// An NC program or CSV that cannot be written.
 #[derive(Debug, Error)]
 pub enum NcError {
-    /// A coordinate is NaN, infinite or too large for the decimals asked.
+    /// A coordinate is NaN, infinite or too large for the decimals asked. The message names
+    /// the point, where it is, and the job's inputs that make that word.
     ///
     /// ```
     /// use spiralcam::nc::NcError;
     /// use spiralcam::job::OutputSpec;
-    /// let e = OutputSpec::default().conventions().words(7, f64::NAN, 0.0, 0.0).unwrap_err();
-    /// assert!(matches!(e, NcError::Unwritable { index: 7, what: "X", .. }));
+    /// let e = OutputSpec::default().conventions().words(7, 2.0, 0.5, f64::NAN).unwrap_err();
+    /// assert!(matches!(e, NcError::Unwritable { index: 7, what: "Z", .. }));
+    /// assert!(e.to_string().starts_with(
+    ///     "point 7 (radius 2 mm, angle 28.6479°): Z = NaN cannot be written: the surface"));
     /// ```
-    #[error("point {index}: {what} = {value} cannot be written")]
+    #[error("{}", unwritable(*index, *what, *value, *at))]
     Unwritable {
         /// Point index along the path.
         index: u64,
@@ -194,6 +204,8 @@ pub enum NcError {
         what: &'static str,
         /// The value.
         value: f64,
+        /// Where: ρ mm and θ radians, when known.
+        at: Option<(f64, f64)>,
     },
     /// The output failed.
     ///
@@ -203,6 +215,33 @@ pub enum NcError {
     /// ```
     #[error("writing: {0}")]
     Io(#[from] std::io::Error),
+}
+
+/// The message of [`NcError::Unwritable`]: the point, where, and what makes the word.
+fn unwritable(index: u64, what: &str, value: f64, at: Option<(f64, f64)>) -> String {
+    let cause = match what {
+        "X" | "rho" => "the spiral's radius (part.diameter_mm, strategy.outer_radius_mm)",
+        "C" | "theta" => "the spindle angle (strategy.start_angle_deg, the sampling)",
+        "F" => {
+            "the inverse-time feed rpm·360°/ΔC (machine.spindle_rpm, the sampling's angle step): \
+             two points at the same angle, or a speed too high"
+        }
+        "W" => "the split between the slide and the servo (strategy.split)",
+        _ => {
+            "the surface or the nose compensation gives a height that is not finite or too large \
+             for the decimals asked there: check the surface's parameters, tool.nose_radius_mm \
+             and output.decimals_xz"
+        }
+    };
+    let value = crate::field::short(value);
+    match at {
+        Some((rho, theta)) => format!(
+            "point {index} (radius {} mm, angle {}°): {what} = {value} cannot be written: {cause}",
+            crate::field::short(rho),
+            crate::field::short(theta.to_degrees().rem_euclid(360.0)),
+        ),
+        None => format!("{what} = {value} cannot be written: {cause}"),
+    }
 }
 
 /// What the header restates, besides the job itself.
@@ -295,6 +334,7 @@ impl<W: Write> NcWriter<W> {
                         index: p.index,
                         what: "F",
                         value: f,
+                        at: Some((p.rho, p.theta)),
                     })?;
                     if self.style.feed_every_block || self.last_f != Some(units) {
                         self.line.extend_from_slice(b" F");
@@ -376,6 +416,11 @@ impl<W: Write> NcWriter<W> {
         };
         self.line.push(letter);
         push_scaled(&mut self.line, units, d);
+    }
+
+    /// Bytes written so far.
+    pub fn bytes(&self) -> u64 {
+        self.bytes
     }
 
     /// Writes the retract and the end; returns the program's size in bytes.

@@ -14,7 +14,7 @@ pub mod hcaa;
 pub mod space_spiral;
 pub mod spiral;
 
-pub use spiral::{Spiral, SpiralPoint};
+pub use spiral::{MAX_POINTS, Spiral, SpiralPoint};
 
 use crate::field::FieldError;
 use crate::job::JobError;
@@ -81,6 +81,16 @@ pub enum PathError {
     /// ```
     #[error("cancelled")]
     Cancelled,
+}
+
+impl PathError {
+    /// The same error with `prefix.` in front of a field's path (see [`FieldError::within`]).
+    pub fn within(self, prefix: &str) -> Self {
+        match self {
+            PathError::Job(JobError::Field(e)) => e.within(prefix).into(),
+            other => other,
+        }
+    }
 }
 
 impl From<FieldError> for PathError {

@@ -317,7 +317,7 @@ impl Spiral {
             explicit: None,
         };
         let points = spiral.point_count_estimate();
-        if !(points <= MAX_POINTS as f64) {
+        if points.is_nan() || points > MAX_POINTS as f64 {
             // The count goes as 1/f for every sampling: the feed that keeps it under the cap.
             let least = feed * points / MAX_POINTS as f64 * (1.0 + 1e-6);
             return Err(FieldError::new(
@@ -409,6 +409,30 @@ impl Spiral {
                 n
             }
         }
+    }
+
+    /// Points from radius `rho` inward, so that a stretch of the path can be looked at without
+    /// walking it from the start: for constant-angle and explicit spirals the spiral's own points
+    /// from the first at or inside `rho`; for constant-arc and zoned ones the same curve and step
+    /// rule from `rho` exactly (the spiral's own points lie within one step of them).
+    pub fn points_from(&self, rho: f64) -> SpiralPoints {
+        let mut it = self.points();
+        let rho = rho.clamp(0.0, self.start_radius_mm());
+        match &mut it.state {
+            State::Explicit { k } => {
+                let points = self.explicit.as_deref().unwrap_or(&[]);
+                // Explicit spirals run inward: ρ decreases along them.
+                *k = points
+                    .partition_point(|p| p.rho > rho)
+                    .min(points.len().saturating_sub(1));
+            }
+            State::Angle { k, steps, n } => {
+                let inside = (rho * *n / self.feed).floor() as u64;
+                *k = steps.saturating_sub(inside.min(*steps));
+            }
+            State::Arc { b, phi, .. } | State::Zoned { b, phi, .. } => *phi = (rho / *b).min(*phi),
+        }
+        it
     }
 
     /// The points, from the outer radius to the centre, streamed.
@@ -660,7 +684,11 @@ mod tests {
         assert!(e.allowed.contains("at least 1.000001e-6 mm/rev"), "{e}");
         // A feed so small that the count overflows a u64 is refused, not wrapped to 0.
         let e = Spiral::new(10.0, 9.7e-17, &s, Direction::Ccw, 0.0).unwrap_err();
-        assert!(e.to_string().starts_with("feed_mm_per_rev = 9.7e-17: gives about 1.030928e19"), "{e}");
+        assert!(
+            e.to_string()
+                .starts_with("feed_mm_per_rev = 9.7e-17: gives about 1.030928e19"),
+            "{e}"
+        );
         let s = Sampling::ConstantArc {
             arc_length_mm: 1e-9,
             max_angle_step_deg: 1.0,

@@ -17,5 +17,5 @@ pub mod tool_path;
 pub mod two_way;
 
 pub use one_way::{Contact, NoseCompensator};
-pub use tool_path::{ToolPath, spiral};
+pub use tool_path::{Probe, ToolPath, spiral};
 pub use two_way::{TwoWay, max_principal_curvature};

@@ -20,7 +20,9 @@
 //! spread evenly over the zone's angles. Zones shallower than 0.1 nm (a radial section grazing a
 //! slope kink) are counted but not listed.
 
-use crate::path::Location;
+use crate::parallel::{fill_chunks, workers};
+use crate::path::{Location, PathError};
+use crate::progress::{Progress, ProgressFn, Stage};
 use crate::surface::{Line, Surface, UndefinedError};
 use crate::tool::NoseCompensator;
 use serde::Serialize;
@@ -34,6 +36,10 @@ const KINK_SIDE: f64 = 1e-9;
 const MAX_SAMPLES: usize = 4000;
 /// Most zones listed.
 pub const MAX_ZONES: usize = 500;
+/// Most zones measured (the sharpest first): each costs up to a few thousand compensations.
+pub const MAX_MEASURED_ZONES: usize = 5000;
+/// Most tool positions one section's envelope search samples.
+const MAX_SECTION_SAMPLES: f64 = 100_000.0;
 /// Zones whose form error is below this are counted, not listed, mm (0.1 nm).
 pub const LISTED_DEPTH_MM: f64 = 1e-7;
 
@@ -76,14 +82,21 @@ pub struct Reach {
     pub shallow_zones: usize,
     /// Zones with a form error of at least 0.1 nm left out of `zones` beyond [`MAX_ZONES`].
     pub unlisted_zones: usize,
+    /// Zones found but not measured, beyond [`MAX_MEASURED_ZONES`] (the least sharp).
+    pub unmeasured_zones: usize,
 }
 
 /// Finds the zones of `surface` that `nose` cannot reach on a part of radius `part_radius_mm`.
+/// The work is bounded: [`ANGLES`] × at most 4001 samples are flagged, and at most
+/// [`MAX_MEASURED_ZONES`] zones measured, the sharpest first (the rest are counted as
+/// `unmeasured_zones`); `progress` sees the sections, then the zones, done ([`Stage::Zones`])
+/// and may cancel.
 pub fn concave_zones(
     surface: &dyn Surface,
     nose: &NoseCompensator,
     part_radius_mm: f64,
-) -> Result<Reach, UndefinedError> {
+    progress: &mut ProgressFn,
+) -> Result<Reach, PathError> {
     let r = nose.nose_radius();
     if r == 0.0 {
         return Ok(Reach::default());
@@ -91,18 +104,42 @@ pub fn concave_zones(
     let wanted = (surface.feature_length_mm() / 16.0).min(r / 8.0);
     let n = ((part_radius_mm / wanted).ceil() as usize).clamp(16, MAX_SAMPLES);
     let delta = part_radius_mm / n as f64;
-    let grid = flag_grid(surface, r, n, delta)?;
-    let mut zones = Vec::new();
-    for cells in components(&grid, n + 1) {
-        zones.push(measure(
-            surface,
-            nose,
-            &grid,
-            &cells,
-            delta,
-            part_radius_mm,
-        )?);
+    let grid = flag_grid(surface, r, n, delta, progress)?;
+    let mut found = components(&grid, n + 1);
+    let cols = n + 1;
+    let sharpest = |cells: &Vec<(usize, usize)>| {
+        cells
+            .iter()
+            .filter_map(|&(i, j)| grid[i * cols + j].map(|f| f.radius))
+            .fold(f64::INFINITY, f64::min)
+    };
+    found.sort_by(|a, b| sharpest(a).total_cmp(&sharpest(b)));
+    let unmeasured_zones = found.len().saturating_sub(MAX_MEASURED_ZONES);
+    found.truncate(MAX_MEASURED_ZONES);
+    let mut zones = vec![None; found.len()];
+    let total = (ANGLES + found.len()) as u64;
+    let batch = 4 * workers();
+    for (k, part) in zones.chunks_mut(batch).enumerate() {
+        let first = k * batch;
+        fill_chunks(part, |start, out| {
+            for (j, slot) in out.iter_mut().enumerate() {
+                let cells = &found[first + start + j];
+                *slot = Some(measure(surface, nose, &grid, cells, delta, part_radius_mm)?);
+            }
+            Ok::<(), UndefinedError>(())
+        })?;
+        let done = (ANGLES + first + part.len()) as u64;
+        if progress(Progress {
+            stage: Stage::Zones,
+            done,
+            total,
+        })
+        .is_break()
+        {
+            return Err(PathError::Cancelled);
+        }
     }
+    let mut zones: Vec<ConcaveZone> = zones.into_iter().flatten().collect();
     let found = zones.len();
     zones.retain(|z| z.depth_um >= LISTED_DEPTH_MM * 1e3);
     let shallow_zones = found - zones.len();
@@ -113,6 +150,7 @@ pub fn concave_zones(
         zones,
         shallow_zones,
         unlisted_zones,
+        unmeasured_zones,
     })
 }
 
@@ -122,45 +160,75 @@ fn flag_grid(
     r: f64,
     n: usize,
     delta: f64,
-) -> Result<Vec<Option<Flag>>, UndefinedError> {
+    progress: &mut ProgressFn,
+) -> Result<Vec<Option<Flag>>, PathError> {
     let cols = n + 1;
-    let mut grid = vec![None; ANGLES * cols];
-    let mut slopes = vec![0.0; cols];
-    for i in 0..ANGLES {
-        let (s, c) = (TAU * i as f64 / ANGLES as f64).sin_cos();
-        let row = &mut grid[i * cols..(i + 1) * cols];
-        for j in 0..cols {
-            let rho = delta * j as f64;
-            let l = surface.local(rho * c, rho * s)?.radial(c, s);
-            let stretch = (1.0 + l.slope * l.slope).powf(1.5);
-            let kappa = l.curvature_term / stretch;
-            if kappa > 1.0 / r {
-                row[j] = Some(Flag {
-                    radius: 1.0 / kappa,
-                    kink: false,
-                    exact: None,
-                });
+    let mut rows: Vec<Vec<Option<Flag>>> = vec![Vec::new(); ANGLES];
+    let batch = 8 * workers();
+    for (k, part) in rows.chunks_mut(batch).enumerate() {
+        fill_chunks(part, |start, out| {
+            for (j, row) in out.iter_mut().enumerate() {
+                *row = flag_row(surface, r, k * batch + start + j, cols, delta)?;
             }
-            slopes[j] = l.slope;
-            if j > 0 {
-                let mean = (slopes[j] - slopes[j - 1]) / delta / stretch;
-                if mean > 1.0 / r {
-                    for k in [j - 1, j] {
-                        let radius = row[k].map_or(f64::INFINITY, |f| f.radius);
-                        if 1.0 / mean < radius {
-                            row[k] = Some(Flag {
-                                radius: 1.0 / mean,
-                                kink: true,
-                                exact: None,
-                            });
-                        }
+            Ok::<(), UndefinedError>(())
+        })?;
+        let done = (k * batch + part.len()) as u64;
+        let total = ANGLES as u64;
+        if progress(Progress {
+            stage: Stage::Zones,
+            done,
+            total,
+        })
+        .is_break()
+        {
+            return Err(PathError::Cancelled);
+        }
+    }
+    Ok(rows.concat())
+}
+
+/// The flags of the radial section at angle index `i`.
+fn flag_row(
+    surface: &dyn Surface,
+    r: f64,
+    i: usize,
+    cols: usize,
+    delta: f64,
+) -> Result<Vec<Option<Flag>>, UndefinedError> {
+    let mut row = vec![None; cols];
+    let mut slopes = vec![0.0; cols];
+    let (s, c) = (TAU * i as f64 / ANGLES as f64).sin_cos();
+    for j in 0..cols {
+        let rho = delta * j as f64;
+        let l = surface.local(rho * c, rho * s)?.radial(c, s);
+        let stretch = (1.0 + l.slope * l.slope).powf(1.5);
+        let kappa = l.curvature_term / stretch;
+        if kappa > 1.0 / r {
+            row[j] = Some(Flag {
+                radius: 1.0 / kappa,
+                kink: false,
+                exact: None,
+            });
+        }
+        slopes[j] = l.slope;
+        if j > 0 {
+            let mean = (slopes[j] - slopes[j - 1]) / delta / stretch;
+            if mean > 1.0 / r {
+                for k in [j - 1, j] {
+                    let radius = row[k].map_or(f64::INFINITY, |f| f.radius);
+                    if 1.0 / mean < radius {
+                        row[k] = Some(Flag {
+                            radius: 1.0 / mean,
+                            kink: true,
+                            exact: None,
+                        });
                     }
                 }
             }
         }
-        flag_reported_kinks(surface, (c, s), delta, row)?;
     }
-    Ok(grid)
+    flag_reported_kinks(surface, (c, s), delta, &mut row)?;
+    Ok(row)
 }
 
 /// Flags the slope kinks the surface reports along the section ([`Surface::slope_kinks`]) where
@@ -418,16 +486,19 @@ impl<'a> Envelope<'a> {
             .min((hi - lo).max(delta) / 8.0);
         let first = (lo - self.half_width).max(-self.part_radius);
         let last = (hi + self.half_width).min(self.part_radius);
+        let step = step.max((last - first) / MAX_SECTION_SAMPLES);
         let count = ((last - first) / step).ceil() as usize + 1;
         let mut positions = Vec::with_capacity(count);
         for k in 0..count {
             let p = (first + step * k as f64).min(last);
             positions.push((p, self.center(p)?));
         }
+        // The positions whose arc covers u: a window of the sorted positions.
         let coarse = |u: f64| -> Option<(f64, f64)> {
-            positions
+            let a = positions.partition_point(|(p, _)| *p < u - self.half_width);
+            let b = positions.partition_point(|(p, _)| *p <= u + self.half_width);
+            positions[a..b]
                 .iter()
-                .filter(|(p, _)| (u - p).abs() <= self.half_width)
                 .map(|&(p, zc)| (p, self.arc(zc, u - p)))
                 .min_by(|a, b| a.1.total_cmp(&b.1))
         };
@@ -555,7 +626,9 @@ mod tests {
             4.0,
         )
         .unwrap();
-        let zones = concave_zones(&groove, &nose, 4.0).unwrap().zones;
+        let zones = concave_zones(&groove, &nose, 4.0, &mut crate::progress::ignore)
+            .unwrap()
+            .zones;
         assert_eq!(zones.len(), 1, "{zones:?}");
         let z = &zones[0];
         let alpha = k.atan();

@@ -10,9 +10,8 @@ use crate::field::FieldError;
 use crate::job::{Compensation, Job, Sampling, StrategySpec};
 use crate::parallel::fill_chunks;
 use crate::path::{PathError, PathPoint, Spiral, SpiralPoint};
-use crate::progress::{PROGRESS_EVERY, Progress};
+use crate::progress::{PROGRESS_EVERY, Progress, ProgressFn, Stage, ignore};
 use crate::surface::{Surface, UndefinedError};
-use std::ops::ControlFlow;
 
 /// Points compensated per batch before they are handed on: bounds the memory of a run.
 const BATCH: usize = 16_384;
@@ -27,6 +26,7 @@ pub fn spiral(
     strategy: &StrategySpec,
     surface: &dyn Surface,
     nose: &NoseCompensator,
+    progress: &mut ProgressFn,
 ) -> Result<Spiral, PathError> {
     let st = strategy;
     let within = |e: FieldError| PathError::from(e.within("strategy"));
@@ -41,7 +41,7 @@ pub fn spiral(
         .map_err(within),
         Sampling::Hcaa { .. } | Sampling::Adaptive { .. } => {
             let tip = |rho: f64, theta: f64| nose.tip_height(surface, rho, theta);
-            crate::path::hcaa::spiral(outer_radius_mm, st, surface, &tip)
+            crate::path::hcaa::spiral(outer_radius_mm, st, surface, &tip, progress)
         }
         Sampling::SpaceSpiral {
             points_per_rev,
@@ -57,6 +57,16 @@ pub fn spiral(
     }
 }
 
+/// Three consecutive points of the path somewhere along it ([`ToolPath::probe`]), and how many
+/// points the path has per mm of radius there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Probe {
+    /// The points, each one step further along the path than the one before.
+    pub points: [PathPoint; 3],
+    /// Points per mm of radius at that place: 1 / (the radial advance of one step).
+    pub per_mm: f64,
+}
+
 /// A checked job's tool path, ready to stream.
 #[derive(Debug)]
 pub struct ToolPath {
@@ -69,6 +79,12 @@ pub struct ToolPath {
 impl ToolPath {
     /// Validates the job and builds its surface, compensator and spiral.
     pub fn new(job: &Job) -> Result<Self, PathError> {
+        Self::with_progress(job, &mut ignore)
+    }
+
+    /// [`ToolPath::new`], with the progress of the sampling's estimate (HCAA and adaptive:
+    /// [`Stage::Bands`]), which may cancel.
+    pub fn with_progress(job: &Job, progress: &mut ProgressFn) -> Result<Self, PathError> {
         job.validate()?;
         let surface = job.build_surface()?;
         // The material ends at the part edge, wherever the spiral starts.
@@ -80,6 +96,7 @@ impl ToolPath {
             &job.strategy,
             surface.as_ref(),
             &nose,
+            progress,
         )?;
         Ok(Self {
             job: job.clone(),
@@ -179,21 +196,55 @@ impl ToolPath {
         })
     }
 
-    /// Zones where the nose cannot reach the surface (see [`crate::tool::reach`]).
-    pub fn concave_zones(&self) -> Result<Reach, UndefinedError> {
+    /// Up to `n` runs of three consecutive points spread evenly in radius from the start of the
+    /// path to the centre (a run with fewer than three points left before the centre is left
+    /// out), computed without walking the path: what an estimate of the job's cost reads (and
+    /// where a surface that is undefined or not finite shows itself before any output). Their
+    /// indices are estimates, exact for constant-angle sampling.
+    pub fn probe(&self, n: usize) -> Result<Vec<Probe>, UndefinedError> {
+        let r0 = self.spiral.start_radius_mm();
+        let total = self.spiral.point_count_estimate();
+        (0..n)
+            .filter_map(|i| {
+                let rho = r0 * (n - i) as f64 / n as f64;
+                let mut points = self.spiral.points_from(rho);
+                // Near the centre a short path may have fewer than three points left.
+                Some((points.next()?, points.next()?, points.next()?))
+            })
+            .map(|(a, b, c)| {
+                let index = (total * (1.0 - a.rho / r0)).max(0.0) as u64;
+                let advance = a.rho - b.rho;
+                Ok(Probe {
+                    points: [
+                        self.path_point(index, a)?.0,
+                        self.path_point(index + 1, b)?.0,
+                        self.path_point(index + 2, c)?.0,
+                    ],
+                    per_mm: if advance > 0.0 { 1.0 / advance } else { 0.0 },
+                })
+            })
+            .collect()
+    }
+
+    /// Zones where the nose cannot reach the surface (see [`crate::tool::reach`]); `progress`
+    /// as [`reach::concave_zones`] calls it.
+    pub fn concave_zones(&self, progress: &mut ProgressFn) -> Result<Reach, PathError> {
         reach::concave_zones(
             self.surface.as_ref(),
             &self.nose,
             self.spiral.start_radius_mm(),
+            progress,
         )
     }
 
     /// Computes every point in order, compensating batches of 16 384 points on every core, and
     /// hands each to `visit` with whether the two-way offset folds there; `progress` is called
-    /// every [`PROGRESS_EVERY`] points and at the end (`Break` cancels). Returns the count.
+    /// every [`PROGRESS_EVERY`] points and at the end, as `stage` (`Break` cancels). Returns
+    /// the count.
     pub fn for_each_point<E: From<PathError>>(
         &self,
-        progress: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+        stage: Stage,
+        progress: &mut ProgressFn,
         visit: &mut dyn FnMut(&PathPoint, bool) -> Result<(), E>,
     ) -> Result<u64, E> {
         let total = self.spiral.point_count_hint();
@@ -212,13 +263,17 @@ impl ToolPath {
                 visit(p, *folds)?;
                 done += 1;
                 if done.is_multiple_of(PROGRESS_EVERY)
-                    && progress(Progress { done, total }).is_break()
+                    && progress(Progress { stage, done, total }).is_break()
                 {
                     return Err(PathError::Cancelled.into());
                 }
             }
         }
-        let _ = progress(Progress { done, total: done });
+        let _ = progress(Progress {
+            stage,
+            done,
+            total: done,
+        });
         Ok(done)
     }
 }

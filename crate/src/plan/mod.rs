@@ -6,13 +6,17 @@
 //! does not depend on the number of threads; only the display copy
 //! ([`crate::display::DisplayPath`]) keeps points, decimated to a fixed budget.
 
+pub mod admission;
+
+pub use admission::Limits;
+
 use crate::display::DisplayPath;
 use crate::dynamics::{Dynamics, DynamicsError};
 use crate::field::FieldError;
 use crate::job::{Compensation, Job, JobError, Sampling, SplitSpec};
 use crate::nc::{CsvWriter, FtsTableWriter, Header, NcError, NcWriter};
 use crate::path::{PathError, hcaa};
-use crate::progress::Progress;
+use crate::progress::{Progress, ProgressFn, Stage};
 use crate::report::{Report, Stats};
 use crate::surface::UndefinedError;
 use crate::tool::ToolPath;
@@ -128,6 +132,14 @@ impl Planner {
     pub fn new(job: &Job) -> Result<Self, PlanError> {
         Ok(Self {
             path: ToolPath::new(job)?,
+        })
+    }
+
+    /// [`Planner::new`] with the progress of the sampling's estimate (see
+    /// [`ToolPath::with_progress`]), which may cancel.
+    pub fn with_progress(job: &Job, progress: &mut ProgressFn) -> Result<Self, PlanError> {
+        Ok(Self {
+            path: ToolPath::with_progress(job, progress)?,
         })
     }
 
@@ -299,29 +311,30 @@ impl Planner {
         };
         let mut display = sinks.display;
         let mut stats = Stats::default();
-        self.path.for_each_point(progress, &mut |p, folds| {
-            match z_slide.map(|z| z.get(p.index as usize)) {
-                None => nc.point(p)?,
-                Some(Some(&z)) => {
-                    nc.point_split(p, z)?;
-                    if let Some(t) = fts_table.as_mut() {
-                        t.point(p, z)?;
+        self.path
+            .for_each_point(Stage::Path, progress, &mut |p, folds| {
+                match z_slide.map(|z| z.get(p.index as usize)) {
+                    None => nc.point(p)?,
+                    Some(Some(&z)) => {
+                        nc.point_split(p, z)?;
+                        if let Some(t) = fts_table.as_mut() {
+                            t.point(p, z)?;
+                        }
                     }
+                    Some(None) => return Err(PlanError::SplitLength(p.index)),
                 }
-                Some(None) => return Err(PlanError::SplitLength(p.index)),
-            }
-            if let Some(csv) = csv.as_mut() {
-                csv.point(p)?;
-            }
-            if let Some(d) = display.as_deref_mut() {
-                d.push(p);
-            }
-            stats.add(p);
-            if folds {
-                stats.add_loop_point(p);
-            }
-            Ok(())
-        })?;
+                if let Some(csv) = csv.as_mut() {
+                    csv.point(p)?;
+                }
+                if let Some(d) = display.as_deref_mut() {
+                    d.push(p);
+                }
+                stats.add(p);
+                if folds {
+                    stats.add_loop_point(p);
+                }
+                Ok(())
+            })?;
         let nc_bytes = nc.finish()?;
         if let Some(csv) = csv {
             csv.finish()?;
@@ -329,7 +342,7 @@ impl Planner {
         if let Some(t) = fts_table {
             t.finish()?;
         }
-        let zones = self.path.concave_zones()?;
+        let zones = self.path.concave_zones(progress)?;
         Ok(Report::new(&self.path, &stats, nc_bytes, zones))
     }
 }

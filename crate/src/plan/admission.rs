@@ -1,0 +1,235 @@
+//! Admission: what a job will cost, estimated before any point of its path is computed, and
+//! checked against stated limits, so that a typo (a feed in metres, a pitch in microns) is
+//! refused at once with the figures and the field to change instead of running for hours or
+//! filling the disk.
+//!
+//! **Points**: the spiral's own count, in floating point ([`Spiral::point_count_estimate`]:
+//! exact for constant angle, within a few points otherwise). **Bytes**: the writers themselves
+//! format [`PROBES`] pairs of consecutive points spread evenly in radius ([`ToolPath::probe`])
+//! into a byte counter; the mean block weighted by the path's points per mm of radius there,
+//! times the points, plus the header, approach and end written once. **Time**: with a clock,
+//! the probe is compensated and formatted again and timed; compensation runs on every core,
+//! formatting on one, and a job with machine dynamics computes its path twice. The concave-zone
+//! report and the accuracy analysis are not in the estimate (they have their own bounds:
+//! [`crate::tool::reach::MAX_MEASURED_ZONES`], and the analyses read the path once).
+//!
+//! [`Spiral::point_count_estimate`]: crate::path::Spiral::point_count_estimate
+//! [`ToolPath::probe`]: crate::tool::ToolPath::probe
+
+use super::{PlanError, Planner};
+use crate::dynamics;
+use crate::field::{FieldError, short};
+use crate::nc::{CsvWriter, FtsTableWriter, NcWriter};
+use crate::parallel::workers;
+use crate::path::MAX_POINTS;
+use crate::report::{Cost, Outputs, bytes, duration};
+use crate::tool::Probe;
+
+/// Pairs of consecutive points the estimate formats.
+pub const PROBES: usize = 128;
+
+/// The default limit on the files a plan writes together, bytes: 4 GB.
+pub const DEFAULT_MAX_OUTPUT_BYTES: u64 = 4_000_000_000;
+
+/// Memory the machine dynamics hold per point, bytes (measured: 216 MB for 1 M points).
+const DYNAMICS_BYTES_PER_POINT: u64 = 216;
+
+/// The bounds a job is admitted under.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limits {
+    /// Most points; at most [`MAX_POINTS`].
+    pub max_points: u64,
+    /// Most bytes of the files written together.
+    pub max_output_bytes: u64,
+    /// Longest estimated time, seconds; `None`: not bounded.
+    pub max_seconds: Option<f64>,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Self {
+            max_points: MAX_POINTS,
+            max_output_bytes: DEFAULT_MAX_OUTPUT_BYTES,
+            max_seconds: None,
+        }
+    }
+}
+
+/// A writer that only counts.
+#[derive(Debug, Default)]
+struct ByteCount(u64);
+
+impl std::io::Write for ByteCount {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.0 += buf.len() as u64;
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// Mean bytes per point of each output over the probes, and the program's fixed part.
+struct Weights {
+    nc_block: f64,
+    nc_fixed: u64,
+    csv_row: f64,
+    fts_row: f64,
+}
+
+impl Planner {
+    /// The cost of this job ([`Cost`]); `clock` (seconds, any origin) times the estimate where
+    /// the caller has one. Errors: the surface undefined where a probe falls, or a word that
+    /// cannot be written there (a height that is not finite), before any output exists.
+    pub fn cost(&self, clock: Option<&dyn Fn() -> f64>) -> Result<Cost, PlanError> {
+        let points = self.spiral().point_count_hint();
+        let passes = if dynamics::wanted(self.job()) { 2 } else { 1 };
+        let probes = self.probe(PROBES)?;
+        let w = self.weights(&probes)?;
+        let seconds = match clock {
+            None => None,
+            Some(now) => {
+                let t0 = now();
+                let probes = self.probe(PROBES)?;
+                let t1 = now();
+                self.weights(&probes)?;
+                let t2 = now();
+                let per_point = |t: f64| t.max(0.0) / (2 * PROBES) as f64;
+                let compensate = per_point(t1 - t0) * passes as f64 / workers() as f64;
+                Some(points as f64 * (compensate + per_point(t2 - t1)))
+            }
+        };
+        let split = self.job().strategy.split.is_some();
+        let n = points as f64;
+        Ok(Cost {
+            points,
+            passes,
+            nc_bytes: w.nc_fixed + (w.nc_block * (n - 1.0).max(0.0)) as u64,
+            csv_bytes: crate::nc::csv::HEADER.len() as u64 + (w.csv_row * n) as u64,
+            fts_table_bytes: split
+                .then(|| crate::nc::fts_table::HEADER.len() as u64 + (w.fts_row * n) as u64),
+            dynamics_memory_bytes: (passes == 2).then(|| points * DYNAMICS_BYTES_PER_POINT),
+            seconds,
+        })
+    }
+
+    /// The writers' bytes per point at the probes, weighted by the path's density there.
+    fn weights(&self, probes: &[Probe]) -> Result<Weights, PlanError> {
+        let job = self.job();
+        let conv = job.output.conventions();
+        let split = job.strategy.split.is_some();
+        let header = self.header();
+        let (mut nc, mut csv, mut fts, mut total) = (0.0, 0.0, 0.0, 0.0);
+        let mut fixed = 0;
+        for (k, p) in probes.iter().enumerate() {
+            // The third block: dialects that write F only when it changes omit it there when
+            // the step is constant, as they do along the path.
+            let [a, b0, b] = &p.points;
+            let mut count = ByteCount::default();
+            let mut w = NcWriter::new(&mut count, &job.output, &header)?;
+            let write = |w: &mut NcWriter<&mut ByteCount>, q| match split {
+                true => w.point_split(q, q.z),
+                false => w.point(q),
+            };
+            write(&mut w, a)?;
+            let after_a = w.bytes();
+            write(&mut w, b0)?;
+            let before = w.bytes();
+            write(&mut w, b)?;
+            let block = w.bytes() - before;
+            let end = w.finish()?;
+            if k == 0 {
+                // Header, preamble, approach and end: all but the two blocks.
+                fixed = end - (before - after_a) - block;
+            }
+            let mut rows = ByteCount::default();
+            CsvWriter::new(&mut rows, conv)?.point(b)?;
+            let csv_row = rows.0 - crate::nc::csv::HEADER.len() as u64;
+            let mut table = ByteCount::default();
+            FtsTableWriter::new(&mut table, conv)?.point(b, b.z)?;
+            let fts_row = table.0 - crate::nc::fts_table::HEADER.len() as u64;
+            nc += p.per_mm * block as f64;
+            csv += p.per_mm * csv_row as f64;
+            fts += p.per_mm * fts_row as f64;
+            total += p.per_mm;
+        }
+        let mean = |sum: f64| if total > 0.0 { sum / total } else { 0.0 };
+        Ok(Weights {
+            nc_block: mean(nc),
+            nc_fixed: fixed,
+            csv_row: mean(csv),
+            fts_row: mean(fts),
+        })
+    }
+}
+
+impl Limits {
+    /// Refuses a job whose `cost` is beyond these limits, naming the field to change and the
+    /// value that would do: the feed, since every count and size goes as 1/f.
+    pub fn check(&self, cost: &Cost, outputs: Outputs, feed: f64) -> Result<(), FieldError> {
+        let limits = self;
+        let field = "strategy.feed_mm_per_rev";
+        let at_least = |ratio: f64| short(feed * ratio * (1.0 + 1e-6));
+        let points = cost.points as f64;
+        if cost.points > limits.max_points {
+            return Err(FieldError::new(
+                field,
+                feed,
+                format!(
+                    "gives about {} points; at most {}: a feed of at least {} mm/rev keeps this \
+                     part under the limit",
+                    short(points),
+                    limits.max_points,
+                    at_least(points / limits.max_points as f64)
+                ),
+            ));
+        }
+        if cost.passes == 2 && cost.points > dynamics::MAX_POINTS {
+            return Err(FieldError::new(
+                field,
+                feed,
+                format!(
+                    "gives about {} points; the machine dynamics (a split or machine limits) hold \
+                     the path in memory and take at most {}: a feed of at least {} mm/rev",
+                    short(points),
+                    dynamics::MAX_POINTS,
+                    at_least(points / dynamics::MAX_POINTS as f64)
+                ),
+            ));
+        }
+        let size = cost.output_bytes(outputs);
+        if size > limits.max_output_bytes {
+            return Err(FieldError::new(
+                field,
+                feed,
+                format!(
+                    "gives about {} points and {} of files ({}), above the limit of {} \
+                     (--max-output-gb raises it): a feed of at least {} mm/rev keeps them under it",
+                    short(points),
+                    bytes(size),
+                    cost.summary(outputs),
+                    bytes(limits.max_output_bytes),
+                    at_least(size as f64 / limits.max_output_bytes as f64)
+                ),
+            ));
+        }
+        if let (Some(s), Some(max)) = (cost.seconds, limits.max_seconds)
+            && s > max
+        {
+            return Err(FieldError::new(
+                field,
+                feed,
+                format!(
+                    "gives about {} points, about {} to plan, above the limit of {}: a feed of \
+                     at least {} mm/rev keeps it under",
+                    short(points),
+                    duration(s),
+                    duration(max),
+                    at_least(s / max)
+                ),
+            ));
+        }
+        Ok(())
+    }
+}

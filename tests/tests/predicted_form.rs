@@ -333,6 +333,8 @@ fn small_job() -> impl Strategy<Value = (String, usize)> {
     )
         .prop_map(
             |(c, r, beta, feed_ratio, part, sampling, cw, start, angles)| {
+                // A nose larger than the part is refused (tool.nose_radius_mm).
+                let r = r.min(2.0 * part);
                 let w = r * (beta / 2.0).to_radians().sin();
                 let f = (2.0 * w * feed_ratio).max(part / 40.0).min(1.9 * w);
                 let dir = if cw { "cw" } else { "ccw" };

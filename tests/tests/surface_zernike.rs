@@ -631,13 +631,13 @@ fn bad_parameters_name_their_field() {
             r#"{"type":"zernike","convention":"standard","base":{"radius_mm":50},"norm_radius_mm":0,"coefficients_mm":[]}"#.to_string(),
             "surface.norm_radius_mm",
             "0",
-            "must be a finite number > 0",
+            "must be a length of at least 1e-6 mm",
         ),
         (
             r#"{"type":"zernike","convention":"fringe","base":{"radius_mm":50},"norm_radius_mm":-2,"coefficients_mm":[1e-3]}"#.to_string(),
             "surface.norm_radius_mm",
             "-2",
-            "must be a finite number > 0",
+            "must be a length of at least 1e-6 mm",
         ),
         (
             r#"{"type":"zernike","convention":"fringe","base":{"conic":-1},"norm_radius_mm":2,"coefficients_mm":[]}"#.to_string(),

@@ -194,7 +194,7 @@ pub enum NcError {
     /// let e = OutputSpec::default().conventions().words(7, 2.0, 0.5, f64::NAN).unwrap_err();
     /// assert!(matches!(e, NcError::Unwritable { index: 7, what: "Z", .. }));
     /// assert!(e.to_string().starts_with(
-    ///     "point 7 (radius 2 mm, angle 28.6479°): Z = NaN cannot be written: the surface"));
+    ///     "point 7 (radius 2 mm, angle 28.64789°): Z = NaN cannot be written: the surface"));
     /// ```
     #[error("{}", unwritable(*index, *what, *value, *at))]
     Unwritable {

@@ -19,7 +19,8 @@
 //!   `Category`, `BaseUnit`, `Parameters[4]`; category `LateralCat`, `Parameters[1]` metres
 //!   per pixel: SurfaceTopography, prysm 0.20's NX2 branch); when they are absent or zero, the
 //!   attribute group's `Data Context.Lateral Resolution:Value` (metres: prysm 0.20,
-//!   Superflat-PCP), looked for in `/MetaData`'s `Measurement` → `Attributes` → `Path`,
+//!   Superflat-PCP; a name ending so, as `Surface Data Context.…` in sro_sto_plume's
+//!   `microscopy.py`), looked for in `/MetaData`'s `Measurement` → `Attributes` → `Path`,
 //!   `/Measurement/Attributes` and the groups under `/Attributes`.
 //! - *Orientation.* The dataset's rows are image rows, the first at the top (prysm flips the
 //!   array "so their y coordinates increase upward"): the first row becomes the highest y,
@@ -519,12 +520,13 @@ fn lateral(
             continue;
         };
         let attrs = group.attributes().map_err(|e| h5_error(file, &g, e))?;
-        if let Some(a) = attrs.iter().find(|a| a.name == NAME) {
+        if let Some(a) = attrs.iter().find(|a| a.name.ends_with(NAME)) {
+            let object = format!("{g}:{}", a.name);
             return match attr_numbers(a).as_deref() {
-                Some([m, ..]) if m.is_finite() && *m > 0.0 => Ok((*m, *m, format!("{g}:{NAME}"))),
+                Some([m, ..]) if m.is_finite() && *m > 0.0 => Ok((*m, *m, object)),
                 _ => Err(MeasuredError::object(
                     file,
-                    &format!("{g}:{NAME}"),
+                    &object,
                     "expected metres per pixel > 0 (the file has no lateral calibration)",
                 )),
             };

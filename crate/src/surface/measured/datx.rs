@@ -96,7 +96,7 @@ fn number(dt: &Datatype, b: &[u8]) -> Option<f64> {
     };
     let mut w = [0u8; 8];
     let n = usize::from(size);
-    if n > 8 || b.len() < n {
+    if n == 0 || n > 8 || b.len() < n {
         return None;
     }
     w[..n].copy_from_slice(&b[..n]);
@@ -334,60 +334,11 @@ fn values(file: &str, path: &str, ds: &Dataset) -> Result<(usize, usize, Vec<f64
         ));
     }
     check_limit(file, "surface nodes", ny.saturating_mul(nx), MAX_GRID_NODES)?;
-    let e = |e| h5_error(file, path, e);
-    let v: Vec<f64> = match ds.dtype() {
-        Datatype::FloatingPoint { size: 4, .. } => widen(&ds.read_array::<f32>().map_err(e)?),
-        Datatype::FloatingPoint { size: 8, .. } => widen(&ds.read_array::<f64>().map_err(e)?),
-        Datatype::FixedPoint {
-            size: 1,
-            signed: true,
-            ..
-        } => widen(&ds.read_array::<i8>().map_err(e)?),
-        Datatype::FixedPoint {
-            size: 1,
-            signed: false,
-            ..
-        } => widen(&ds.read_array::<u8>().map_err(e)?),
-        Datatype::FixedPoint {
-            size: 2,
-            signed: true,
-            ..
-        } => widen(&ds.read_array::<i16>().map_err(e)?),
-        Datatype::FixedPoint {
-            size: 2,
-            signed: false,
-            ..
-        } => widen(&ds.read_array::<u16>().map_err(e)?),
-        Datatype::FixedPoint {
-            size: 4,
-            signed: true,
-            ..
-        } => widen(&ds.read_array::<i32>().map_err(e)?),
-        Datatype::FixedPoint {
-            size: 4,
-            signed: false,
-            ..
-        } => widen(&ds.read_array::<u32>().map_err(e)?),
-        Datatype::FixedPoint {
-            size: 8,
-            signed: true,
-            ..
-        } => ds
-            .read_array::<i64>()
-            .map_err(e)?
-            .iter()
-            .map(|v| *v as f64)
-            .collect(),
-        Datatype::FixedPoint {
-            size: 8,
-            signed: false,
-            ..
-        } => ds
-            .read_array::<u64>()
-            .map_err(e)?
-            .iter()
-            .map(|v| *v as f64)
-            .collect(),
+    let dt = ds.dtype();
+    let size = match dt {
+        Datatype::FloatingPoint { size: 4 | 8, .. } | Datatype::FixedPoint { size: 1..=8, .. } => {
+            stored_size(dt, 0).unwrap_or(1)
+        }
         other => {
             return Err(MeasuredError::object(
                 file,
@@ -396,6 +347,11 @@ fn values(file: &str, path: &str, ds: &Dataset) -> Result<(usize, usize, Vec<f64
             ));
         }
     };
+    let raw = ds.read_raw_bytes().map_err(|e| h5_error(file, path, e))?;
+    let v: Vec<f64> = raw
+        .chunks_exact(size.max(1))
+        .map(|b| number(dt, b).unwrap_or(f64::NAN))
+        .collect();
     if v.len() as u64 != nx * ny {
         return Err(MeasuredError::object(
             file,
@@ -404,11 +360,6 @@ fn values(file: &str, path: &str, ds: &Dataset) -> Result<(usize, usize, Vec<f64
         ));
     }
     Ok((nx as usize, ny as usize, v))
-}
-
-/// Every value of an array, in its logical (row-major) order, as f64.
-fn widen<'a, T: Copy + Into<f64> + 'a>(a: impl IntoIterator<Item = &'a T>) -> Vec<f64> {
-    a.into_iter().map(|v| (*v).into()).collect()
 }
 
 /// Millimetres per stored unit, and its description.

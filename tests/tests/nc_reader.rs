@@ -18,6 +18,7 @@
 
 mod common;
 
+use common::{c_error, half_unit};
 use proptest::prelude::*;
 use spiralcam::job::{Dialect, FeedMode, Job};
 use spiralcam::nc::reader::{
@@ -97,21 +98,6 @@ fn golden(file: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("golden")
         .join(file)
-}
-
-fn half_unit(decimals: u32) -> f64 {
-    0.5 * 10f64.powi(-(decimals as i32)) + 1e-9
-}
-
-/// Difference of two C values, across the wrap when wrapping.
-fn c_error(a: f64, b: f64, wrap: bool) -> f64 {
-    let d = a - b;
-    if wrap {
-        (d + 180.0).rem_euclid(360.0) - 180.0
-    } else {
-        d
-    }
-    .abs()
 }
 
 #[test]
@@ -213,6 +199,43 @@ fn style_end(d: Dialect) -> &'static str {
         Dialect::Iso => "M2",
         _ => "M30",
     }
+}
+
+/// A program split between the slide and a fast tool servo (`NcWriter::point_split`, the servo
+/// on an arbitrary 5-per-revolution share of up to 20 µm, as in `rs274.rs`): the reader gives
+/// the servo's axis W beside Z, the slide's share, and Z + W is the single-channel Z to half a
+/// written unit.
+#[test]
+fn a_split_program_reads_back_with_the_servo_axis() {
+    let mut job = common::example_job("tilted-flat.json");
+    job.output = spiralcam::job::OutputSpec::default();
+    let slide = |p: &PathPoint| p.z - 0.02 * (0.5 + 0.5 * (5.0 * p.theta).sin());
+    let (pts, nc) = common::split_program(&job, slide);
+    let r = read("split.ngc", &nc);
+    let conv = job.output.conventions();
+    let half = half_unit(conv.decimals_xz);
+    let feeds: Vec<&Move> = r
+        .moves
+        .iter()
+        .filter(|m| m.kind == MoveKind::Linear)
+        .collect();
+    assert_eq!(feeds.len(), pts.len());
+    for (m, p) in feeds.iter().zip(&pts) {
+        let w = m.target.get(spiralcam::nc::reader::MachineAxis::W);
+        assert!(
+            (m.target.z() - conv.z_sign * slide(p)).abs() <= half,
+            "Z {m:?}"
+        );
+        assert!(
+            (w - conv.z_sign * (p.z - slide(p))).abs() <= 2.0 * half,
+            "W {m:?}"
+        );
+        assert!(
+            (m.target.z() + w - conv.z_sign * p.z).abs() <= half,
+            "Z + W {m:?}"
+        );
+    }
+    assert_eq!(r.summary.axes.letters(), "XZCW");
 }
 
 // ---------------------------------------------------------------------------------------
@@ -779,6 +802,41 @@ M30
     .unwrap_err();
     assert!(matches!(e.problem, Problem::Unbalanced(_)), "{e}");
     assert!(e.to_string().contains("into a loop"), "{e}");
+}
+
+#[test]
+fn feeds_keep_their_mode_and_units() {
+    let text = "G21 G18 G90
+G94 G1 X1 F100
+G93
+G1 X2
+G1 X3 F5
+X4
+G20 G95 G1 X0.5 F0.01
+G94 G1 X0.6 F2
+M2
+";
+    let r = read("feeds.ngc", text);
+    let feeds: Vec<(FeedRateMode, Option<f64>)> =
+        r.moves.iter().map(|m| (m.feed.mode, m.feed.f)).collect();
+    assert_eq!(
+        feeds,
+        [
+            (FeedRateMode::PerMinute, Some(100.0)),
+            // After G93 the old F (mm/min) means nothing: unknown until given.
+            (FeedRateMode::InverseTime, None),
+            (FeedRateMode::InverseTime, Some(5.0)),
+            (FeedRateMode::InverseTime, Some(5.0)),
+            // F on the line that sets inches is read in the units before (LinuxCNC sets the
+            // feed before the units: rs274 prints SET_FEED_RATE before USE_LENGTH_UNITS).
+            (FeedRateMode::PerRevolution, Some(0.01)),
+            // Then inches: F in mm per minute.
+            (FeedRateMode::PerMinute, Some(2.0 * 25.4)),
+        ]
+    );
+    assert_eq!(r.moves[4].target.x(), 0.5 * 25.4);
+    assert_eq!(r.summary.units, Some(Units::Millimetres));
+    assert!(r.summary.mixed_units);
 }
 
 // ---------------------------------------------------------------------------------------

@@ -28,7 +28,7 @@ pub const MAX_CACHED: usize = 65_536;
 
 /// An open loop or `if`.
 #[derive(Debug, Clone)]
-pub struct LoopEntry {
+pub(crate) struct LoopEntry {
     /// What it is.
     pub kind: LoopKind,
     /// The line that opened it.
@@ -41,7 +41,7 @@ pub struct LoopEntry {
 
 /// The kinds of loops and `if`s.
 #[derive(Debug, Clone, PartialEq)]
-pub enum LoopKind {
+pub(crate) enum LoopKind {
     /// `WHILE[…] DO n`.
     While(u64),
     /// `DO n` alone.
@@ -79,7 +79,7 @@ impl LoopKind {
 
 /// Why a target was cached.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Purpose {
+pub(crate) enum Purpose {
     /// Past the end of a loop or sub that is not run.
     Past,
     /// To the line that closes the structure (`endif`, `endwhile`, …).
@@ -102,7 +102,7 @@ struct Target {
 
 /// Targets found by reading forward, by the file and line that asked.
 #[derive(Debug, Default)]
-pub struct Cache {
+pub(crate) struct Cache {
     targets: HashMap<(u32, u64, Purpose), Target>,
     subs: HashMap<(u32, Label), Mark>,
     programs: HashMap<(u32, u64), Option<Mark>>,
@@ -197,25 +197,39 @@ impl<'a> Reader<'a> {
         id: u64,
         at: Mark,
     ) -> Result<(), Problem> {
+        let truth = self.condition(text, cond)?;
+        let what = format!("WHILE … DO {id} (line {})", at.line);
+        self.while_test(LoopKind::While(id), truth, at, &what, |c| match c.head {
+            Head::While { id: i, .. } | Head::Do(i) if i == id => Nest::Open,
+            Head::End(i) if i == id => Nest::Close,
+            _ => Nest::Other,
+        })
+    }
+
+    /// The test of a `while` loop opened by the line at `at`: on into the body (a further pass
+    /// if this line opened the innermost loop), or past the loop's end.
+    fn while_test(
+        &mut self,
+        kind: LoopKind,
+        truth: bool,
+        at: Mark,
+        what: &str,
+        nest: impl FnMut(&Classified) -> Nest,
+    ) -> Result<(), Problem> {
         let again = self
             .loop_top()
-            .is_some_and(|l| l.kind == LoopKind::While(id) && l.start == at);
-        if self.condition(text, cond)? {
+            .is_some_and(|l| l.kind == kind && l.start == at);
+        if truth {
             if again {
                 self.count_pass()
             } else {
-                self.push_loop(LoopKind::While(id), at)
+                self.push_loop(kind, at)
             }
         } else {
             if again {
                 self.loops.pop();
             }
-            let what = format!("WHILE … DO {id} (line {})", at.line);
-            self.skip_past(at, &what, |c| match c.head {
-                Head::While { id: i, .. } | Head::Do(i) if i == id => Nest::Open,
-                Head::End(i) if i == id => Nest::Close,
-                _ => Nest::Other,
-            })
+            self.skip_past(at, what, nest)
         }
     }
 
@@ -375,19 +389,7 @@ impl<'a> Reader<'a> {
             }
             Nest::Other => Scan::Continue,
         })?;
-        let (to, after) =
-            found.ok_or_else(|| Problem::Unbalanced(format!("{what} is never closed")))?;
-        self.cache.room();
-        self.cache.targets.insert(
-            key,
-            Target {
-                at: to,
-                after,
-                exits: None,
-                passes: 0,
-            },
-        );
-        Ok(())
+        self.remember(key, found, what).map(|_| ())
     }
 
     /// Reads forward to the next line that `is_target` accepts, leaving it to be read next.
@@ -409,19 +411,28 @@ impl<'a> Reader<'a> {
                 Scan::Continue
             }
         })?;
-        let (to, after) =
+        let to = self.remember(key, found, what)?;
+        self.seek(to.at)
+    }
+
+    /// Caches the line a skip found (an error naming `what` if it found none).
+    fn remember(
+        &mut self,
+        key: (u32, u64, Purpose),
+        found: Option<(Mark, Mark)>,
+        what: &str,
+    ) -> Result<Target, Problem> {
+        let (at, after) =
             found.ok_or_else(|| Problem::Unbalanced(format!("{what} is never closed")))?;
+        let t = Target {
+            at,
+            after,
+            exits: None,
+            passes: 0,
+        };
         self.cache.room();
-        self.cache.targets.insert(
-            key,
-            Target {
-                at: to,
-                after,
-                exits: None,
-                passes: 0,
-            },
-        );
-        self.seek(to)
+        self.cache.targets.insert(key, t);
+        Ok(t)
     }
 
     /// An `o` word with its keyword, on the line at `at`; `rest` is where its arguments start.
@@ -483,26 +494,10 @@ impl<'a> Reader<'a> {
                 }
             }
             OKeyword::While => {
-                let again = self
-                    .loop_top()
-                    .is_some_and(|l| l.kind == LoopKind::OWhile(label.clone()) && l.start == at);
-                if self.condition(text, rest)? {
-                    if again {
-                        self.count_pass()
-                    } else {
-                        self.push_loop(LoopKind::OWhile(label), at)
-                    }
-                } else {
-                    if again {
-                        self.loops.pop();
-                    }
-                    let what = format!("{label} while (line {})", at.line);
-                    self.skip_past(
-                        at,
-                        &what,
-                        o_nest(OKeyword::While, OKeyword::EndWhile, label),
-                    )
-                }
+                let truth = self.condition(text, rest)?;
+                let what = format!("{label} while (line {})", at.line);
+                let nest = o_nest(OKeyword::While, OKeyword::EndWhile, label.clone());
+                self.while_test(LoopKind::OWhile(label), truth, at, &what, nest)
             }
             OKeyword::EndWhile => match self.loop_top() {
                 Some(l) if l.kind == LoopKind::OWhile(label.clone()) => self.seek(l.start),
@@ -715,7 +710,7 @@ impl<'a> Reader<'a> {
 
 /// How a line bears on the structure being skipped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Nest {
+pub(crate) enum Nest {
     /// Opens one like it.
     Open,
     /// Closes one.

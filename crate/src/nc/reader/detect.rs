@@ -116,22 +116,8 @@ impl Detector {
     /// A G or M code on a line that ran.
     pub fn code(&mut self, code: Code) {
         let units = match (code.letter, code.tenths) {
-            (b'G', 200 | 210) => {
-                self.iso_codes += 1;
-                Some(if code.tenths == 200 {
-                    Units::Inches
-                } else {
-                    Units::Millimetres
-                })
-            }
-            (b'G', 700 | 710) => {
-                self.fanuc_codes += 1;
-                Some(if code.tenths == 700 {
-                    Units::Inches
-                } else {
-                    Units::Millimetres
-                })
-            }
+            (b'G', 200 | 700) => Some(Units::Inches),
+            (b'G', 210 | 710) => Some(Units::Millimetres),
             (b'M', 20) => {
                 self.m2 += 1;
                 None
@@ -142,6 +128,13 @@ impl Detector {
             }
             _ => None,
         };
+        if units.is_some() {
+            if code.tenths < 700 {
+                self.iso_codes += 1;
+            } else {
+                self.fanuc_codes += 1;
+            }
+        }
         if let Some(u) = units {
             match self.units {
                 None => self.units = Some(u),

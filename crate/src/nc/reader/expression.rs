@@ -24,6 +24,9 @@ use super::variables::{Key, MAX_VARIABLE_NUMBER, Variables};
 /// Deepest nesting of brackets and functions in one expression.
 pub const MAX_DEPTH: usize = 32;
 
+/// Longest name of a `#<name>` variable (LinuxCNC's lines are 255 characters).
+pub const MAX_NAME: usize = 255;
+
 /// LinuxCNC's `TOLERANCE_EQUAL`: EQ, NE, LE and GE treat values this close as equal.
 const TOLERANCE_EQUAL: f64 = 1e-4;
 
@@ -248,8 +251,11 @@ impl<'v> Evaluator<'v> {
             c.i = from + len + 1;
             let name = c.since(from);
             let name = &name[..name.len() - 1];
-            if name.is_empty() {
-                return Err(Problem::Syntax("#<> has an empty name".into()));
+            if name.is_empty() || name.len() > MAX_NAME {
+                return Err(Problem::Syntax(format!(
+                    "a #<name> has 1 to {MAX_NAME} characters, not {}",
+                    name.len()
+                )));
             }
             return Ok(Key::Name(name.into()));
         }

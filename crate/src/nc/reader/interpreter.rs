@@ -134,7 +134,7 @@ pub enum Step {
 
 /// A line of a source: its byte offset and number.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct Mark {
+pub(crate) struct Mark {
     /// Byte offset of its start.
     pub offset: u64,
     /// Line number, from 1.
@@ -147,7 +147,7 @@ impl Mark {
 }
 
 /// An open source.
-pub struct OpenFile<'a> {
+pub(crate) struct OpenFile<'a> {
     /// Its name.
     pub name: Arc<str>,
     /// Its interned id (caches are keyed by it).
@@ -173,7 +173,7 @@ impl<'a> OpenFile<'a> {
 
 /// What kind of program a frame runs.
 #[derive(Debug, Clone, PartialEq)]
-pub enum FrameKind {
+pub(crate) enum FrameKind {
     /// The main program.
     Main,
     /// An `M98` child, with its first line and the runs left.
@@ -203,7 +203,7 @@ impl FrameKind {
 
 /// A frame of the call stack.
 #[derive(Debug, Clone)]
-pub struct Frame {
+pub(crate) struct Frame {
     /// Index in the open files.
     pub file: usize,
     /// What it runs.
@@ -217,7 +217,7 @@ pub struct Frame {
 }
 
 /// What a scan does with a line.
-pub enum Scan {
+pub(crate) enum Scan {
     /// Read on.
     Continue,
     /// This is the line.

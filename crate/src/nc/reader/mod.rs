@@ -24,7 +24,8 @@
 //! in all (executed or passed over; a loop's every pass counts), [`MAX_LOOP_ITERATIONS`] passes
 //! of one loop, [`MAX_CALL_DEPTH`] nested calls, [`MAX_LOOP_NESTING`] open loops,
 //! [`MAX_LINE_BYTES`] bytes a line, [`expression::MAX_DEPTH`] nested brackets,
-//! [`variables::MAX_VARIABLES`] variables, [`MAX_FILES`] called files; the first three are
+//! [`variables::MAX_VARIABLES`] variables (names of [`expression::MAX_NAME`] characters at
+//! most), [`MAX_FILES`] called files; the first three are
 //! options ([`ReaderOptions`]). Reaching one is an error naming it, never a hang.
 //!
 //! Every length handed out is in mm, every angle in degrees, as commanded (C is not wrapped or

@@ -15,8 +15,12 @@
 //!   (a lab's Moore program writes it so; LinuxCNC refuses it). `G53` moves in machine
 //!   coordinates for its block. Tool offsets (`T0303`, `G43`) are not applied: T is reported,
 //!   G43 refused.
-//! - Feed: `G93` inverse time, `G94` per minute, `G95` per revolution; F is modal in every
-//!   mode (LinuxCNC wants F on each `G93` block; the Moore style writes it when it changes).
+//! - Feed: `G93` inverse time, `G94` per minute, `G95` per revolution; F is modal within a
+//!   mode (LinuxCNC wants F on each `G93` block; the Moore style writes it when it changes) and
+//!   unknown after the mode changes until the program gives it again (the old number meant
+//!   something else). F is kept in mm (per minute or revolution); an F on the line that
+//!   changes the units is read in the units before the change, as LinuxCNC does (it sets the
+//!   feed before the units: rs274 prints `SET_FEED_RATE` before `USE_LENGTH_UNITS`).
 //! - Motion: `G0`, `G1`, and `G2`/`G3` arcs in the `G18` (Z-X) plane with X and Z only, their
 //!   centre by `I`/`K` or `R` as LinuxCNC finds it (`interp_arc.cc`, `arc_data_ijk`,
 //!   `arc_data_r`, with its tolerance `CENTER_ARC_RADIUS_TOLERANCE_MM` = 2·0.01·√2 mm);
@@ -195,7 +199,8 @@ pub struct OffsetTable(pub [Position; WORK_SYSTEMS]);
 pub struct Feed {
     /// What F means.
     pub mode: FeedRateMode,
-    /// F: mm/min (G94), mm/rev (G95) or 1/min (G93); `None` until the program gives one.
+    /// F: mm/min (G94), mm/rev (G95) or 1/min (G93); `None` until the program gives one in
+    /// this mode.
     pub f: Option<f64>,
 }
 
@@ -394,7 +399,9 @@ impl Modal {
                 _ => continue,
             };
             if mode != self.feed_mode {
+                // F meant something else in the old mode: it must be given again.
                 self.feed_mode = mode;
+                self.f = None;
                 report(Change::FeedMode(mode));
             }
         }
@@ -481,10 +488,7 @@ impl Modal {
                         180 => Plane::ZX,
                         _ => Plane::YZ,
                     };
-                    if plane != self.plane {
-                        self.plane = plane;
-                        report(Change::Plane(plane));
-                    }
+                    set(&mut self.plane, plane, report, Change::Plane);
                 }
                 200 | 700 | 210 | 710 => {
                     let units = if t == 200 || t == 700 {
@@ -492,18 +496,9 @@ impl Modal {
                     } else {
                         Units::Millimetres
                     };
-                    if units != self.units {
-                        self.units = units;
-                        report(Change::Units(units));
-                    }
+                    set(&mut self.units, units, report, Change::Units);
                 }
-                70 | 80 => {
-                    let d = t == 70;
-                    if d != self.diameter {
-                        self.diameter = d;
-                        report(Change::DiameterMode(d));
-                    }
-                }
+                70 | 80 => set(&mut self.diameter, t == 70, report, Change::DiameterMode),
                 400 | 490 | 610 | 611 | 640 | 930 | 940 | 950 | 980 | 990 => {}
                 800 => self.motion = None,
                 900 | 910 => {
@@ -512,10 +507,7 @@ impl Modal {
                     } else {
                         DistanceMode::Incremental
                     };
-                    if d != self.distance {
-                        self.distance = d;
-                        report(Change::Distance(d));
-                    }
+                    set(&mut self.distance, d, report, Change::Distance);
                 }
                 901 | 911 => self.arc_absolute = t == 901,
                 960 | 970 => report(Change::ConstantSurfaceSpeed(t == 960)),
@@ -806,6 +798,19 @@ fn arc_centre_r(clockwise: bool, p0: (f64, f64), p1: (f64, f64), r: f64) -> Opti
     Some((mid.0 + offset * theta.cos(), mid.1 + offset * theta.sin()))
 }
 
+/// Sets a mode, reporting it when it changes.
+fn set<T: PartialEq + Copy>(
+    slot: &mut T,
+    v: T,
+    report: &mut dyn FnMut(Change),
+    change: fn(T) -> Change,
+) {
+    if *slot != v {
+        *slot = v;
+        report(change(v));
+    }
+}
+
 /// `v` as a whole number ≥ 0 (P, L, T words).
 pub fn whole(letter: &str, v: f64) -> Result<u64, Problem> {
     if v >= 0.0 && v.fract() == 0.0 && v < 1e15 {
@@ -820,17 +825,13 @@ pub fn whole(letter: &str, v: f64) -> Result<u64, Problem> {
 /// Words left in the block after execution are used by nothing: an error, never skipped.
 fn unused_words(block: &Block) -> Result<(), Problem> {
     use super::block::OTHER_LETTERS;
-    for (i, v) in block.other.iter().enumerate() {
+    let words = OTHER_LETTERS
+        .iter()
+        .zip(&block.other)
+        .chain(AXIS_LETTERS.iter().zip(&block.axes));
+    for (letter, v) in words {
         if let Some(v) = v {
-            let letter = OTHER_LETTERS[i].to_ascii_uppercase() as char;
-            return Err(Problem::Syntax(format!(
-                "{letter}{v} is used by nothing on its line"
-            )));
-        }
-    }
-    for (i, v) in block.axes.iter().enumerate() {
-        if let Some(v) = v {
-            let letter = AXIS_LETTERS[i].to_ascii_uppercase() as char;
+            let letter = letter.to_ascii_uppercase() as char;
             return Err(Problem::Syntax(format!(
                 "{letter}{v} is used by nothing on its line"
             )));

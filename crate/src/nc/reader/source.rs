@@ -30,7 +30,7 @@ pub trait Source {
     fn seek(&mut self, offset: u64) -> io::Result<()>;
 }
 
-/// Text in memory: a `String`, `&str`, `Arc<str>` or bytes.
+/// Text in memory: a `String`, `&str`, `Vec<u8>`, `Arc<[u8]>`, anything that is bytes.
 #[derive(Debug, Clone)]
 pub struct TextSource<T> {
     text: T,

@@ -584,6 +584,35 @@ o<pass> endsub
     assert_eq!(r.summary.dialect.dialect, Some(Dialect::Iso));
 }
 
+/// A sub called many times is looked for once: the calling file is read to its end once, the
+/// sub's own file once, then every call seeks to the body.
+#[test]
+fn repeated_calls_do_not_read_the_files_again() {
+    let main = format!(
+        "G21 G0 X0\no1 repeat [200]\no<kid> call\no1 endrepeat\nM2\n{}",
+        "(filler)\n".repeat(1000)
+    );
+    let kid = |r: ProgramRef<'_>| -> Result<Option<Program<'static>>, String> {
+        Ok((r == ProgramRef::Name("kid"))
+            .then(|| Program::from_text("kid.ngc", "o<kid> sub\nG1 X1 F1\no<kid> endsub\n")))
+    };
+    let reader = Reader::new(
+        Program::from_text("main.ngc", main),
+        ReaderOptions::default(),
+    )
+    .with_resolver(kid);
+    let r = run(reader).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(r.moves.len(), 201);
+    // 5 lines of the main program, 2 a pass, the main file and the sub's file read once
+    // (1005 + 3), 2 lines of the body a call.
+    let want = 5 + 2 * 199 + 1005 + 3 + 2 * 200;
+    assert!(
+        r.summary.lines_read <= want as u64,
+        "{} lines",
+        r.summary.lines_read
+    );
+}
+
 /// The two centres of the circles of radius `r` through `a` and `b`, in (z, x).
 fn centres(a: (f64, f64), b: (f64, f64), r: f64) -> [(f64, f64); 2] {
     let (dz, dx) = (b.0 - a.0, b.1 - a.1);
@@ -748,9 +777,10 @@ this text after the closing percent is not read (
         );
         assert_eq!(r.event_kinds().last(), Some(&&EventKind::End("M2".into())));
     }
-    // A closing % ends a program without M2.
-    let r = read("pct.ngc", "%\nG0 X1\n%\nnot read\n");
+    // A closing % ends a program without M2; a byte-order mark and CR LF ends are no text.
+    let r = read("pct.ngc", "\u{feff}%\r\nG0 X1\r\n%\r\nnot read\n");
     assert_eq!(r.event_kinds().last(), Some(&&EventKind::End("%".into())));
+    assert_eq!(r.moves.len(), 1);
 }
 
 #[test]
@@ -793,6 +823,16 @@ M30
         .collect();
     assert_eq!(got, want);
     assert_eq!(r.summary.dialect.dialect, Some(Dialect::Precitech));
+    // A computed GOTO goes where its value says each time.
+    let text = "G71 G18 G90\n#1 = 0\nN10 #1 = #1 + 1\n#5 = 20\nIF [#1 EQ 2] THEN #5 = 30\n\
+                GOTO #5\nN20 G1 X#1 Z0 F1\nGOTO 10\nN30 G1 X#1 Z1\nM30\n";
+    let r = read("computed.nc", text);
+    let got: Vec<(f64, f64)> = r
+        .moves
+        .iter()
+        .map(|m| (m.target.x(), m.target.z()))
+        .collect();
+    assert_eq!(got, [(1.0, 0.0), (2.0, 1.0)]);
     // Jumping into a loop is refused.
     let e = read_with(
         "into.nc",

@@ -21,7 +21,7 @@ use super::expression::Evaluator;
 use super::interpreter::{Mark, Reader, Scan};
 use super::lexer::{Classified, Cursor, Head, Label, OKeyword};
 use super::variables::Key;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// Most cached skip targets, sub bodies and program numbers (past it the cache starts over).
 pub const MAX_CACHED: usize = 65_536;
@@ -86,8 +86,8 @@ pub(crate) enum Purpose {
     ToEnd,
     /// To the next branch of an `if`.
     ToBranch,
-    /// A `GOTO`.
-    Goto,
+    /// A `GOTO` to this label (the target can be an expression).
+    Goto(u64),
 }
 
 /// A cached jump: the target line, the line after it, and for a forward GOTO how many loops
@@ -105,12 +105,15 @@ struct Target {
 pub(crate) struct Cache {
     targets: HashMap<(u32, u64, Purpose), Target>,
     subs: HashMap<(u32, Label), Mark>,
+    /// Files read to their end looking for subs: every sub of theirs is in `subs`.
+    subs_complete: HashSet<u32>,
     programs: HashMap<(u32, u64), Option<Mark>>,
 }
 
 impl Cache {
     fn room(&mut self) {
-        if self.targets.len() + self.subs.len() + self.programs.len() >= MAX_CACHED {
+        let len = self.targets.len() + self.subs.len() + self.subs_complete.len();
+        if len + self.programs.len() >= MAX_CACHED {
             *self = Cache::default();
         }
     }
@@ -124,6 +127,17 @@ impl Cache {
     pub fn set_sub(&mut self, id: u32, label: Label, body: Mark) {
         self.room();
         self.subs.entry((id, label)).or_insert(body);
+    }
+
+    /// Whether every sub of file `id` is known.
+    pub fn all_subs_known(&self, id: u32) -> bool {
+        self.subs_complete.contains(&id)
+    }
+
+    /// Notes that every sub of file `id` is known.
+    pub fn set_all_subs_known(&mut self, id: u32) {
+        self.room();
+        self.subs_complete.insert(id);
     }
 
     /// Where `O number` of file `id` was found (`Some(None)`: looked for, absent).
@@ -260,7 +274,7 @@ impl<'a> Reader<'a> {
     /// `GOTO target` (target evaluated) on the line at `at`.
     pub(super) fn goto(&mut self, target: u64, at: Mark) -> Result<(), Problem> {
         let id = self.file().id;
-        let key = (id, at.offset, Purpose::Goto);
+        let key = (id, at.offset, Purpose::Goto(target));
         let t = match self.cache.targets.get(&key) {
             Some(t) => *t,
             None => {

@@ -356,6 +356,17 @@ impl<'a> Reader<'a> {
         &self.modal
     }
 
+    /// Lines read so far (executed or passed over), for progress.
+    pub fn lines_read(&self) -> u64 {
+        self.lines_read
+    }
+
+    /// How far into the main program's text the reader is, in bytes, for progress against
+    /// its size (loops and calls go back and forth).
+    pub fn main_offset(&self) -> u64 {
+        self.files[0].source.offset()
+    }
+
     fn run_line(&mut self) -> Result<(), ReadError> {
         let at = match self.read_line_counted() {
             Ok(Some(at)) => at,
@@ -681,6 +692,10 @@ impl<'a> Reader<'a> {
                 });
             }
             LineRead::Line => f.next_line += 1,
+        }
+        // A byte-order mark (text saved on Windows) before the first line is not text.
+        if at.offset == 0 && buf.starts_with(b"\xef\xbb\xbf") {
+            buf.drain(..3);
         }
         self.lines_read += 1;
         if self.lines_read > self.options.max_lines {

@@ -53,7 +53,7 @@ pub use modal::{
     OffsetTable, Plane, Position, Units,
 };
 pub use source::{Source, StreamSource, TextSource};
-pub use subprogram::{Program, ProgramRef, Resolver, files_beside};
+pub use subprogram::{Program, ProgramRef, Resolver, called_names, files_beside, texts_beside};
 
 /// The most bytes in one line (LinuxCNC takes 255; long comments and expressions need more).
 pub const MAX_LINE_BYTES: usize = 4096;

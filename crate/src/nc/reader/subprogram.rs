@@ -13,13 +13,14 @@
 //!   its subroutine path), whose text must define `o<name> sub` (as rs274 requires).
 //!
 //! Calls nest at most `max_call_depth` deep ([`super::MAX_CALL_DEPTH`]); the call stack is a
-//! vector, not Rust recursion. [`files_beside`] is the resolver for files on disk.
+//! vector, not Rust recursion. [`files_beside`] is the resolver for files on disk,
+//! [`texts_beside`] the same for texts held in memory (the page's files).
 
 use super::error::Problem;
 use super::interpreter::{EventKind, Frame, FrameKind, Mark, OpenFile, Reader, Scan};
 use super::lexer::{Head, Label, OKeyword};
 use super::source::{Source, StreamSource, TextSource};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
 /// A called program as the program names it.
@@ -31,7 +32,9 @@ pub enum ProgramRef<'r> {
     Name(&'r str),
 }
 
-/// A program's name (for messages and [`super::Location`]) and its text.
+/// A program's name (for messages and [`super::Location`]) and its text. The name stands for
+/// the text: the reader caches jump targets by it, so two programs given one name must be one
+/// text.
 pub struct Program<'a> {
     /// The file name or any label the caller chooses.
     pub name: Arc<str>,
@@ -68,40 +71,86 @@ impl std::fmt::Debug for Program<'_> {
 /// when looking failed.
 pub type Resolver<'a> = dyn FnMut(ProgramRef<'_>) -> Result<Option<Program<'a>>, String> + 'a;
 
-/// The resolver for files beside `main` (a program's path). `M98 P n` looks for, in this
-/// order, `O0n`-style names (`O{n:04}`, `O{n}`, then lower case), `{n:04}`, `{n}` and
-/// `{stem}-{n}` (the main file's stem), each bare or with `.nc`, `.NC`, `.ngc`, `.NGC`;
-/// `o<name> call` for `name.ngc`, `name.nc`, `name`. Two files that both fit are an error
-/// (which one the controller takes is not known).
+/// The resolver for files beside `main` (a program's path), by the names [`called_names`]
+/// gives. The directory is listed at each call and names are matched exactly, so a
+/// case-insensitive file system does not make `O1001.nc` and `o1001.nc` two files.
 pub fn files_beside(
     main: &Path,
 ) -> impl FnMut(ProgramRef<'_>) -> Result<Option<Program<'static>>, String> + use<> {
     let dir = main.parent().map(Path::to_path_buf).unwrap_or_default();
-    let stem = main
+    let stem = stem_of(&main.to_string_lossy());
+    move |r: ProgramRef<'_>| {
+        let listed = if dir.as_os_str().is_empty() {
+            std::fs::read_dir(".")
+        } else {
+            std::fs::read_dir(&dir)
+        };
+        let entries = listed.map_err(|e| format!("{}: {e}", dir.display()))?;
+        let names: Vec<String> = entries
+            .filter_map(|e| e.ok())
+            .filter(|e| e.file_type().is_ok_and(|t| t.is_file()))
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .collect();
+        let Some(name) = pick(r, &stem, names.iter().map(String::as_str))? else {
+            return Ok(None);
+        };
+        let path = dir.join(name);
+        Program::open(&path)
+            .map(Some)
+            .map_err(|e| format!("{}: {e}", path.display()))
+    }
+}
+
+/// The resolver over texts the caller holds (the page's uploaded files), named as on disk:
+/// the same names as [`files_beside`], `main` being the main program's file name.
+pub fn texts_beside<'a>(
+    main: &str,
+    files: &'a [(String, String)],
+) -> impl FnMut(ProgramRef<'_>) -> Result<Option<Program<'a>>, String> + 'a {
+    let stem = stem_of(main);
+    move |r: ProgramRef<'_>| {
+        let names = files.iter().map(|(n, _)| n.as_str());
+        Ok(pick(r, &stem, names)?.and_then(|name| {
+            files
+                .iter()
+                .find(|(n, _)| *n == name)
+                .map(|(n, t)| Program::from_text(n, t.as_str()))
+        }))
+    }
+}
+
+/// The file names a call may be written in, in order: for `M98 P n`, `O{n:04}`, `O{n}`, their
+/// lower case, `{n:04}`, `{n}` and `{stem}-{n}` (the main file's stem), each bare or with
+/// `.nc`, `.NC`, `.ngc`, `.NGC`; for `o<name> call`, `name.ngc`, `name.nc`, `name`.
+pub fn called_names(r: ProgramRef<'_>, stem: &str) -> Vec<String> {
+    candidates(r, stem)
+}
+
+/// The one name among `names` the call may be written in; two are an error (which one the
+/// controller takes is not known).
+fn pick<'n>(
+    r: ProgramRef<'_>,
+    stem: &str,
+    names: impl Iterator<Item = &'n str>,
+) -> Result<Option<&'n str>, String> {
+    let wanted = candidates(r, stem);
+    let found: Vec<&str> = names.filter(|n| wanted.iter().any(|w| w == n)).collect();
+    match found.as_slice() {
+        [] => Ok(None),
+        [one] => Ok(Some(one)),
+        many => Err(format!(
+            "several files could be the called program: {}",
+            many.join(", ")
+        )),
+    }
+}
+
+/// A file name's stem: the name without its folder and last extension.
+fn stem_of(name: &str) -> String {
+    Path::new(name)
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    move |r: ProgramRef<'_>| {
-        let names = candidates(r, &stem);
-        let found: Vec<PathBuf> = names
-            .iter()
-            .map(|n| dir.join(n))
-            .filter(|p| p.is_file())
-            .collect();
-        match found.as_slice() {
-            [] => Ok(None),
-            [one] => Program::open(one)
-                .map(Some)
-                .map_err(|e| format!("{}: {e}", one.display())),
-            many => Err(format!(
-                "several files could be the called program: {}",
-                many.iter()
-                    .map(|p| p.display().to_string())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )),
-        }
-    }
+        .unwrap_or_default()
 }
 
 /// File names tried for a call, in order, without repeats.
@@ -195,11 +244,7 @@ impl<'a> Reader<'a> {
     pub(super) fn call_sub(&mut self, label: Label, args: &[f64]) -> Result<(), Problem> {
         self.check_depth()?;
         let file = self.frame().file;
-        let body = match self.known_sub(file, &label) {
-            Some(b) => Some(b),
-            None => self.find_sub_in_file(&label, Mark::START)?,
-        };
-        let (file, body) = match body {
+        let (file, body) = match self.find_sub(&label)? {
             Some(b) => (file, b),
             None => {
                 let name = match &label {
@@ -227,7 +272,7 @@ impl<'a> Reader<'a> {
                     },
                     true,
                 )?;
-                let found = self.find_sub_in_file(&label, Mark::START)?;
+                let found = self.find_sub(&label)?;
                 let body = found.ok_or_else(|| {
                     Problem::Subprogram(format!(
                         "{child_name} was found for {label} call but defines no {label} sub"
@@ -337,17 +382,19 @@ impl<'a> Reader<'a> {
         Ok(())
     }
 
-    /// The body of a sub of the file already seen.
-    fn known_sub(&self, file: usize, label: &Label) -> Option<Mark> {
-        self.cache.sub(self.files[file].id, label)
-    }
-
-    /// Looks through the current file from `from` for `label sub`, noting every sub seen;
-    /// leaves the file where it was. Returns the body's first line.
-    fn find_sub_in_file(&mut self, label: &Label, from: Mark) -> Result<Option<Mark>, Problem> {
-        let back = self.next_mark();
-        self.seek(from)?;
+    /// Looks through the current file for `label sub` (once per file: a look to the end notes
+    /// every sub, and the file is not read again for another); leaves the file where it was.
+    /// Returns the body's first line.
+    fn find_sub(&mut self, label: &Label) -> Result<Option<Mark>, Problem> {
         let id = self.file().id;
+        if let Some(body) = self.cache.sub(id, label) {
+            return Ok(Some(body));
+        }
+        if self.cache.all_subs_known(id) {
+            return Ok(None);
+        }
+        let back = self.next_mark();
+        self.seek(Mark::START)?;
         let found = self.scan(|c, after, cache| {
             if let Head::OWord {
                 label: l,
@@ -362,6 +409,9 @@ impl<'a> Reader<'a> {
             }
             Scan::Continue
         })?;
+        if found.is_none() {
+            self.cache.set_all_subs_known(id);
+        }
         self.seek(back)?;
         Ok(found.map(|(_, after)| after))
     }
@@ -388,6 +438,32 @@ impl<'a> Reader<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn texts_are_resolved_by_the_same_names_and_ambiguity_is_an_error() {
+        let files = vec![
+            ("lens-2.nc".to_string(), "G1 X1\nM99\n".to_string()),
+            (
+                "pass.ngc".to_string(),
+                "o<pass> sub\no<pass> endsub\n".to_string(),
+            ),
+            ("O0003.nc".to_string(), "M99\n".to_string()),
+            ("3".to_string(), "M99\n".to_string()),
+        ];
+        let mut r = texts_beside("lens.nc", &files);
+        let name = |p: Option<Program>| p.map(|p| p.name.to_string());
+        assert_eq!(
+            name(r(ProgramRef::Number(2)).unwrap()).as_deref(),
+            Some("lens-2.nc")
+        );
+        assert_eq!(
+            name(r(ProgramRef::Name("pass")).unwrap()).as_deref(),
+            Some("pass.ngc")
+        );
+        assert_eq!(name(r(ProgramRef::Number(4)).unwrap()), None);
+        let e = r(ProgramRef::Number(3)).unwrap_err();
+        assert_eq!(e, "several files could be the called program: O0003.nc, 3");
+    }
 
     #[test]
     fn candidate_names_for_numbers_and_names() {

@@ -10,9 +10,9 @@
 //!   spaces and both kinds of comments), whose moves the test computes itself from the
 //!   program's numbers (within 1e-12 mm);
 //! - LinuxCNC's interpreter `rs274 -g` on ISO programs with loops, variables, G52, G10/G55,
-//!   G92, G7, G53, inch units and arcs: the same moves, rs274's canon positions (printed with 4
-//!   decimals, in program coordinates) turned into machine positions with the offsets it
-//!   prints, within 6e-5 of a program unit;
+//!   G92, G7, G53, inch units, arcs, `M98` children and A/Y words: the same moves, rs274's
+//!   canon positions (printed with 4 decimals, in program coordinates) turned into machine
+//!   positions with the offsets it prints, within 6e-5 of a program unit;
 //! - bad input: each a clear error with the file, line and text, never a panic; a property
 //!   test feeds mutated programs and checks the reader stops within its bounds.
 
@@ -986,7 +986,7 @@ fn compare_with_rs274(name: &str, text: &str, tol: f64) {
     assert_eq!(ours.moves.len(), theirs.len(), "{name}: number of moves");
     for (k, (m, (kind, p))) in ours.moves.iter().zip(&theirs).enumerate() {
         let at = format!("{name} move {k} (line {})", m.at.line);
-        for i in [0, 1, 2, 5] {
+        for i in 0..6 {
             assert!(
                 (m.target.0[i] - p.0[i]).abs() <= tol,
                 "{at}: axis {i}: ours {:?}, rs274 {:?}",
@@ -1100,6 +1100,27 @@ G21 G1 X10 Z-3
 M2
 ";
     compare_with_rs274("inch.ngc", text, CANON * 25.4);
+}
+
+#[test]
+fn m98_children_named_globals_and_extra_axes_read_as_rs274_reads_them() {
+    // LinuxCNC 2.9 runs Fanuc-style M98 P… L… with the O… program in the same file.
+    let text = "G21 G18 G90 G94
+G0 X1 Y0.5 Z1 A0 C0
+#<_step> = 0.05
+M98 P100 L3
+o1 repeat [2]
+  G1 X[1 + #<_step>] A[#<_step>*10] F10
+  #<_step> = [#<_step> * 2]
+o1 endrepeat
+G0 Z2
+M2
+O100
+G91 G1 X-0.1 Z-0.01 C30 F5
+G90
+M99
+";
+    compare_with_rs274("m98.ngc", text, CANON);
 }
 
 #[test]

@@ -4,6 +4,9 @@
 //! each block checked against the planned points (words, signs, wrapping, F), and the CSV of a
 //! job is checked row by row against the plan.
 
+mod common;
+
+use common::{c_error, half_unit};
 use spiralcam::job::Job;
 use spiralcam::job::{Dialect, FeedMode};
 use spiralcam::nc::ascii_comment;
@@ -160,26 +163,10 @@ fn value(w: &HashMap<char, String>, letter: char, decimals: u32, line: &str) -> 
         .unwrap_or_else(|e| panic!("{letter}{text} in {line:?}: {e}"))
 }
 
-/// Half a unit of the last written digit, plus rounding of the planned value.
-fn half_unit(decimals: u32) -> f64 {
-    0.5 * 10f64.powi(-(decimals as i32)) + 1e-9
-}
-
 /// The machine C of θ: c_sign·θ in degrees, wrapped to [0, 360) if asked.
 fn machine_c(theta: f64, c_sign: f64, wrap: bool) -> f64 {
     let c = c_sign * theta.to_degrees();
     if wrap { c.rem_euclid(360.0) } else { c }
-}
-
-/// Difference of two C values, across the wrap when wrapping.
-fn c_error(a: f64, b: f64, wrap: bool) -> f64 {
-    let d = a - b;
-    if wrap {
-        (d + 180.0).rem_euclid(360.0) - 180.0
-    } else {
-        d
-    }
-    .abs()
 }
 
 /// Reads a program back line by line and checks every line against the plan.

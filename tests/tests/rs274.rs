@@ -12,6 +12,7 @@
 
 mod common;
 
+use common::half_unit;
 use spiralcam::job::Job;
 use spiralcam::path::PathPoint;
 use spiralcam::plan::{Planner, Sinks};
@@ -20,11 +21,6 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 const RS274: &str = "/usr/bin/rs274";
-
-/// Half a unit of the last of `decimals` digits, plus rounding of the planned value.
-fn half_unit(decimals: u32) -> f64 {
-    0.5 * 10f64.powi(-(decimals as i32)) + 1e-9
-}
 
 /// rs274 prints canon arguments with 4 decimals.
 const PRINTED: f64 = 5e-5;
@@ -285,23 +281,14 @@ fn a_lens_array_program_with_mirrored_x_and_z_reads_back() {
 /// add up to the single-channel Z within half a written unit.
 #[test]
 fn a_split_program_reads_back_with_the_servo_word() {
-    use spiralcam::nc::NcWriter;
     let mut job = common::example_job("tilted-flat.json");
     job.name = "split".into();
     job.output = spiralcam::job::OutputSpec {
         fts_word: Some("A".into()),
         ..Default::default()
     };
-    let planner = Planner::new(&job).expect("valid job");
-    let pts: Vec<PathPoint> = planner.points().map(|p| p.unwrap()).collect();
     let slide = |p: &PathPoint| p.z - 0.02 * (0.5 + 0.5 * (5.0 * p.theta).sin());
-    let mut nc = Vec::new();
-    let mut writer = NcWriter::new(&mut nc, &job.output, &planner.header()).unwrap();
-    for p in &pts {
-        writer.point_split(p, slide(p)).unwrap();
-    }
-    writer.finish().unwrap();
-    let text = String::from_utf8(nc).unwrap();
+    let (pts, text) = common::split_program(&job, slide);
     let mut debug = String::new();
     for l in text.lines() {
         debug.push_str(l);

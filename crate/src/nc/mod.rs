@@ -18,6 +18,9 @@
 //! LinuxCNC's interpreter, and our reading of Moore Nanotech (Delta Tau) and Precitech programs.
 //! Check signs and words against your controller; each is an option. Output is reproducible: no
 //! dates, no host names. Comments are plain ASCII.
+//!
+//! The [`reader`] goes the other way: it runs a program of any of these dialects (or written by
+//! another system) and hands out its moves, for verification against the design.
 
 pub mod csv;
 pub mod fts_table;
@@ -25,6 +28,7 @@ mod iso;
 mod moore;
 pub mod number;
 mod precitech;
+pub mod reader;
 
 pub use csv::CsvWriter;
 pub use fts_table::FtsTableWriter;

@@ -18,6 +18,10 @@
 //! ([`pal`], paper 003), NURBS ([`nurbs`]) and STEP faces ([`step_face`]), scattered data
 //! ([`scattered`], paper 004's RBF), and any base with decentred terms ([`composite`]);
 //! [`reframed`] sees any of them along its normal at a point.
+//!
+//! Measured data: [`measured`] reads what metrology hands back after a cut (CSV point clouds,
+//! Zygo `.datx` and MetroPro `.dat` maps) into one map of heights in millimetres, oriented into
+//! the machine's frame, for the layers above to register and correct.
 
 pub mod asphere;
 pub mod biconic;
@@ -27,6 +31,7 @@ pub mod compound_eye;
 pub mod data_file;
 pub mod jet;
 pub mod lens_array;
+pub mod measured;
 pub mod nurbs;
 pub mod off_axis_conic;
 pub mod pal;

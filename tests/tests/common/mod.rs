@@ -21,6 +21,8 @@
 //!   oracle of the concave-zone report (its docs give its accuracy).
 //! - [`field_error`] and [`check_example_jobs`]: a surface's JSON that must be refused, and the
 //!   example jobs of the documentation that must plan.
+//! - [`half_unit`], [`c_error`] and [`split_program`]: NC words against planned values, and a
+//!   program split between the slide and the fast tool servo.
 
 #![allow(dead_code)]
 
@@ -555,4 +557,36 @@ pub fn path_points(p: &Planner) -> Vec<PathPoint> {
     p.points()
         .map(|x| x.unwrap_or_else(|e| panic!("{e}")))
         .collect()
+}
+
+/// Half a unit of the last of `decimals` digits, plus 1e-9 for the rounding of the planned
+/// value: how far a written NC word may lie from the value it writes.
+pub fn half_unit(decimals: u32) -> f64 {
+    0.5 * 10f64.powi(-(decimals as i32)) + 1e-9
+}
+
+/// The difference of two C values in degrees, across the wrap when wrapping.
+pub fn c_error(a: f64, b: f64, wrap: bool) -> f64 {
+    let d = a - b;
+    if wrap {
+        (d + 180.0).rem_euclid(360.0) - 180.0
+    } else {
+        d
+    }
+    .abs()
+}
+
+/// The points of `job` and its NC program with every height split: the slide at `slide(p)`,
+/// the fast tool servo the rest (`NcWriter::point_split`).
+pub fn split_program(job: &Job, slide: impl Fn(&PathPoint) -> f64) -> (Vec<PathPoint>, String) {
+    use spiralcam::nc::NcWriter;
+    let planner = Planner::new(job).expect("valid job");
+    let pts: Vec<PathPoint> = planner.points().map(|p| p.unwrap()).collect();
+    let mut nc = Vec::new();
+    let mut writer = NcWriter::new(&mut nc, &job.output, &planner.header()).unwrap();
+    for p in &pts {
+        writer.point_split(p, slide(p)).unwrap();
+    }
+    writer.finish().unwrap();
+    (pts, String::from_utf8(nc).unwrap())
 }

@@ -412,6 +412,22 @@ function showLegend(zMin, zMax, exaggeration, revolutionStep) {
   $('path-note').textContent = revolutionStep > 1 ? `path: every ${revolutionStep}th revolution shown` : 'path: every revolution shown';
 }
 
+/** Bytes as kB, MB or GB, 3 significant digits. */
+function bytes(n) {
+  if (!Number.isFinite(n)) return '?';
+  const [v, unit] = n < 1e3 ? [n, 'B'] : n < 1e6 ? [n / 1e3, 'kB'] : n < 1e9 ? [n / 1e6, 'MB'] : [n / 1e9, 'GB'];
+  return `${unit === 'B' ? v : v.toPrecision(3)} ${unit}`;
+}
+
+/** The download buttons say what each file will weigh before it is made: the program's size
+ * from the plan, the tables' from the estimate the plan was admitted on. */
+function labelDownloads(report) {
+  const e = report.estimate ?? {};
+  $('download-nc').textContent = `Download NC (${bytes(report.nc_bytes)})`;
+  $('download-csv').textContent = `Download CSV (about ${bytes(e.csv_bytes)})`;
+  $('download-fts').textContent = `Download FTS table (about ${bytes(e.fts_table_bytes)})`;
+}
+
 function download(name, data, type) {
   const url = URL.createObjectURL(new Blob([data], { type }));
   const a = Object.assign(document.createElement('a'), { href: url, download: name });
@@ -551,6 +567,7 @@ async function main() {
       status.plans += 1;
       showReport(m.report, job);
       $('download-fts').hidden = !m.report.dynamics?.split;
+      labelDownloads(m.report);
       showDynamics(m.report.dynamics, job);
       showMaps(m.maps, stops);
       showAnalysis(null, stops);

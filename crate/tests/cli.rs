@@ -10,62 +10,9 @@ use spiralcam::job::Job;
 use spiralcam::plan::{Planner, Sinks};
 use std::ffi::OsStr;
 use std::ops::ControlFlow;
-use std::path::PathBuf;
-use std::process::{Command, Output};
 
-/// A scratch directory, removed on drop.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(test: &str) -> Self {
-        let dir =
-            std::env::temp_dir().join(format!("spiralcam-cli-test-{}-{test}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        Self(dir)
-    }
-
-    fn path(&self, file: &str) -> PathBuf {
-        self.0.join(file)
-    }
-
-    fn write(&self, file: &str, text: &str) -> PathBuf {
-        let p = self.path(file);
-        std::fs::write(&p, text).unwrap();
-        p
-    }
-
-    /// Names of the files in the directory, sorted.
-    fn files(&self) -> Vec<String> {
-        let mut v: Vec<String> = std::fs::read_dir(&self.0)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        v.sort();
-        v
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-fn spiralcam<S: AsRef<OsStr>>(args: &[S]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_spiralcam"))
-        .args(args)
-        .output()
-        .expect("run spiralcam")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
+mod common;
+use common::{Scratch, spiralcam, stderr, stdout};
 
 /// A small job: a lens array on a Ø1.2 mm part, 241 points.
 const JOB: &str = r#"{

@@ -593,7 +593,7 @@ fn a_base_sphere_smaller_than_the_part_is_an_error_naming_the_radius() {
         .unwrap_err()
         .to_string();
     let radius: f64 = e
-        .strip_prefix("compound eye is undefined at radius ")
+        .strip_prefix("surface: compound eye is undefined at radius ")
         .and_then(|rest| rest.split(' ').next())
         .and_then(|r| r.parse().ok())
         .unwrap_or_else(|| panic!("{e}"));

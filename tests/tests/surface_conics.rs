@@ -208,7 +208,7 @@ fn biconic_beyond_its_rim_is_undefined() {
     assert_eq!(e.radius_mm, 6f64.hypot(8.01));
     assert!(
         e.to_string()
-            .starts_with("biconic is undefined at radius 10.00"),
+            .starts_with("surface: biconic is undefined at radius 10.00"),
         "{e}"
     );
     assert!(e.reason.contains("|x| = 10 mm"), "{e}");
@@ -616,7 +616,7 @@ fn an_off_axis_point_beyond_the_parent_rim_names_both_radii() {
     assert_eq!(e.radius_mm, 6.0);
     assert!(
         e.to_string()
-            .starts_with("off-axis conic is undefined at radius 6 mm (x 0 mm, y 6 mm)"),
+            .starts_with("surface: off-axis conic is undefined at radius 6 mm (x 0 mm, y 6 mm)"),
         "{e}"
     );
     assert!(e.reason.contains("31 mm from the parent's axis"), "{e}");

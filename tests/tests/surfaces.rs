@@ -598,8 +598,8 @@ fn conics_beyond_their_rim_are_undefined_and_say_where() {
     let text = e.to_string();
     assert!(
         text.starts_with(&format!(
-            "even asphere is undefined at radius {} mm (x 3 mm, y 4.5 mm)",
-            3f64.hypot(4.5)
+            "surface: even asphere is undefined at radius {} mm (x 3 mm, y 4.5 mm)",
+            spiralcam::field::short(3f64.hypot(4.5))
         )),
         "{text}"
     );

@@ -15,9 +15,10 @@ use spiralcam::analysis::Analysis;
 use spiralcam::analysis::power_map::PowerMap;
 use spiralcam::display::{DisplayPath, SurfaceMesh};
 use spiralcam::job::Job;
-use spiralcam::plan::{Planner, Sinks};
+use spiralcam::plan::{Limits, Planner, Sinks};
 use spiralcam::progress::Progress;
 use spiralcam::raster::Raster;
+use spiralcam::report::{Cost, Outputs};
 use spiralcam::surface::{PartDisc, SurfaceSpec};
 use std::ops::ControlFlow;
 use wasm_bindgen::prelude::*;
@@ -146,15 +147,17 @@ impl Planned {
 #[wasm_bindgen]
 pub fn plan(job: JsValue, progress: &js_sys::Function) -> Result<Planned, JsError> {
     let planner = read_job(job, progress)?;
+    let cost = admit(&planner, Outputs::default())?;
     let total = planner.spiral().point_count_hint();
     let mut display = DisplayPath::new(total, planner.spiral().revolutions(), DISPLAY_POINTS);
     let sinks = Sinks {
         display: Some(&mut display),
         ..Default::default()
     };
-    let report = planner
+    let mut report = planner
         .run_with_dynamics(sinks, &mut reporter(progress))
         .map_err(|e| JsError::new(&e.to_string()))?;
+    report.estimate = Some(cost);
     let mesh = SurfaceMesh::for_surface(planner.surface(), planner.job().part_radius_mm())
         .map_err(|e| JsError::new(&e.to_string()))?;
     Ok(Planned {
@@ -170,7 +173,11 @@ pub fn plan(job: JsValue, progress: &js_sys::Function) -> Result<Planned, JsErro
 /// The NC program of `job`, byte for byte what `spiralcam plan JOB --nc FILE` writes.
 #[wasm_bindgen]
 pub fn nc_program(job: JsValue, progress: &js_sys::Function) -> Result<Vec<u8>, JsError> {
-    output_file(job, progress, |out| Sinks {
+    let outputs = Outputs {
+        nc: true,
+        ..Outputs::default()
+    };
+    output_file(job, progress, outputs, |out| Sinks {
         nc: Some(out),
         ..Default::default()
     })
@@ -179,7 +186,11 @@ pub fn nc_program(job: JsValue, progress: &js_sys::Function) -> Result<Vec<u8>, 
 /// The CSV table of `job`, byte for byte what `spiralcam plan JOB --csv FILE` writes.
 #[wasm_bindgen]
 pub fn csv_table(job: JsValue, progress: &js_sys::Function) -> Result<Vec<u8>, JsError> {
-    output_file(job, progress, |out| Sinks {
+    let outputs = Outputs {
+        csv: true,
+        ..Outputs::default()
+    };
+    output_file(job, progress, outputs, |out| Sinks {
         csv: Some(out),
         ..Default::default()
     })
@@ -197,20 +208,51 @@ pub fn machine_presets() -> String {
 /// `spiralcam plan JOB --fts-csv FILE` writes.
 #[wasm_bindgen]
 pub fn fts_table(job: JsValue, progress: &js_sys::Function) -> Result<Vec<u8>, JsError> {
-    output_file(job, progress, |out| Sinks {
+    let outputs = Outputs {
+        fts_table: true,
+        ..Outputs::default()
+    };
+    output_file(job, progress, outputs, |out| Sinks {
         fts_table: Some(out),
         ..Default::default()
     })
+}
+
+/// The most bytes a download is built from, in the page's memory (the command line writes any
+/// size to disk).
+const MAX_DOWNLOAD_BYTES: u64 = 1_000_000_000;
+
+/// The job's cost ([`Planner::cost`]; no clock in the browser), refused beyond the page's
+/// limits for the file that `outputs` names.
+fn admit(planner: &Planner, outputs: Outputs) -> Result<Cost, JsError> {
+    let cost = planner
+        .cost(None)
+        .map_err(|e| JsError::new(&e.to_string()))?;
+    let limits = Limits {
+        max_output_bytes: MAX_DOWNLOAD_BYTES,
+        ..Limits::default()
+    };
+    limits
+        .check(&cost, outputs, planner.job().strategy.feed_mm_per_rev)
+        .map_err(|e| {
+            JsError::new(&format!(
+                "{e} (in the page a download is at most 1 GB; the command line writes any size)"
+            ))
+        })?;
+    Ok(cost)
 }
 
 /// Plans `job` into the one sink that `sinks` makes of a byte buffer, and returns the bytes.
 fn output_file(
     job: JsValue,
     progress: &js_sys::Function,
+    outputs: Outputs,
     sinks: impl FnOnce(&mut Vec<u8>) -> Sinks<'_>,
 ) -> Result<Vec<u8>, JsError> {
     let planner = read_job(job, progress)?;
-    let mut out = Vec::new();
+    let cost = admit(&planner, outputs)?;
+    // Room for the whole file at once: growing by doubling would hold it twice.
+    let mut out = Vec::with_capacity((cost.output_bytes(outputs) as f64 * 1.02) as usize + 4096);
     planner
         .run_with_dynamics(sinks(&mut out), &mut reporter(progress))
         .map_err(|e| JsError::new(&e.to_string()))?;

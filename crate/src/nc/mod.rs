@@ -200,7 +200,7 @@ pub enum NcError {
     /// assert!(e.to_string().starts_with(
     ///     "point 7 (radius 2 mm, angle 28.64789°): Z = NaN cannot be written: the surface"));
     /// ```
-    #[error("{}", unwritable(*index, *what, *value, *at))]
+    #[error("{}", unwritable(*index, what, *value, *at))]
     Unwritable {
         /// Point index along the path.
         index: u64,

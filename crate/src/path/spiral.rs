@@ -128,9 +128,22 @@ fn checked_geometry(
     feed_mm_per_rev: f64,
     start_angle_deg: f64,
 ) -> Result<(f64, f64, f64), FieldError> {
+    let outer = positive("outer_radius_mm", outer_radius_mm)?;
+    let feed = positive("feed_mm_per_rev", feed_mm_per_rev)?;
+    if feed > outer {
+        return Err(FieldError::new(
+            "feed_mm_per_rev",
+            feed,
+            format!(
+                "must be at most the radius the spiral starts at, {} mm: the path would not make \
+                 one turn",
+                crate::field::short(outer)
+            ),
+        ));
+    }
     Ok((
-        positive("outer_radius_mm", outer_radius_mm)?,
-        positive("feed_mm_per_rev", feed_mm_per_rev)?,
+        outer,
+        feed,
         finite("start_angle_deg", start_angle_deg)?.to_radians(),
     ))
 }

@@ -86,6 +86,7 @@ impl Planner {
         let points = self.spiral().point_count_hint();
         let passes = if dynamics::wanted(self.job()) { 2 } else { 1 };
         let probes = self.probe(PROBES)?;
+        check_heights(&probes)?;
         let w = self.weights(&probes)?;
         let seconds = match clock {
             None => None,
@@ -162,6 +163,35 @@ impl Planner {
             fts_row: mean(fts),
         })
     }
+}
+
+/// The largest commanded height accepted, mm: no lathe's Z axis travels further.
+pub const MAX_HEIGHT_MM: f64 = 1000.0;
+
+/// Refuses a path whose heights at the probes are not finite or beyond [`MAX_HEIGHT_MM`]: a
+/// surface whose parameters make its sag overflow (a coefficient of 1e308, a normalisation
+/// radius far below the part) is named before anything is written.
+fn check_heights(probes: &[Probe]) -> Result<(), FieldError> {
+    for p in probes.iter().flat_map(|p| &p.points) {
+        for z in [p.z, p.contact[2]] {
+            if !(z.abs() <= MAX_HEIGHT_MM) {
+                return Err(FieldError::new(
+                    "surface",
+                    format!(
+                        "a height of {} mm at radius {} mm, angle {}°",
+                        short(z),
+                        short(p.rho),
+                        short(p.theta.to_degrees().rem_euclid(360.0))
+                    ),
+                    format!(
+                        "the sag over the part must be finite and within ±{MAX_HEIGHT_MM} mm \
+                         (no lathe's Z travels further): check the surface's parameters"
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 impl Limits {

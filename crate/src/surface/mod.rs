@@ -210,7 +210,12 @@ impl Line {
 /// assert!(e.to_string().contains("radius 6 mm"));
 /// ```
 #[derive(Debug, Clone, PartialEq, Error)]
-#[error("{surface} is undefined at radius {radius_mm} mm (x {x_mm} mm, y {y_mm} mm): {reason}")]
+#[error(
+    "surface: {surface} is undefined at radius {} mm (x {} mm, y {} mm): {reason}",
+    crate::field::short(*.radius_mm),
+    crate::field::short(*.x_mm),
+    crate::field::short(*.y_mm)
+)]
 pub struct UndefinedError {
     /// The family, e.g. `even asphere`.
     pub surface: &'static str,

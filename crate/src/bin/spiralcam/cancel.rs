@@ -6,9 +6,11 @@
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
+#[cfg(unix)]
 use std::time::Duration;
 
 /// How long a signalled run has to stop by itself.
+#[cfg(unix)]
 const GRACE: Duration = Duration::from_secs(3);
 
 static CANCELLED: AtomicBool = AtomicBool::new(false);
@@ -59,6 +61,7 @@ pub fn forget(path: &Path) {
     }
 }
 
+#[cfg(unix)]
 fn remove_all() {
     if let Ok(t) = TEMPORARIES.lock() {
         for p in t.iter() {

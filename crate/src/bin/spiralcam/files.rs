@@ -202,3 +202,79 @@ pub fn write_file(path: &Path, text: &[u8]) -> Result<(), Failure> {
         .map_err(|e| Failure::Run(format!("{}: {e}", path.display())))?;
     out.commit()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("spiralcam-files-{}-{name}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn a_link_at_the_temporary_name_is_not_followed() {
+        let dir = scratch("link");
+        let victim = dir.join("victim");
+        std::fs::write(&victim, "untouched").unwrap();
+        let target = dir.join("out.nc");
+        let first = dir.join(format!(
+            ".out.nc.spiralcam-{}-0.partial",
+            std::process::id()
+        ));
+        std::os::unix::fs::symlink(&victim, &first).unwrap();
+        let mut out = OutputFile::create(&target).unwrap();
+        out.writer.write_all(b"program").unwrap();
+        out.commit().unwrap();
+        assert_eq!(std::fs::read_to_string(&victim).unwrap(), "untouched");
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), "program");
+        assert!(
+            std::fs::symlink_metadata(&first)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn an_output_dropped_unfinished_leaves_nothing() {
+        let dir = scratch("drop");
+        let target = dir.join("out.nc");
+        {
+            let mut out = OutputFile::create(&target).unwrap();
+            out.writer.write_all(b"half a program").unwrap();
+        }
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn only_regular_files_are_read_and_only_up_to_the_limit() {
+        let dir = scratch("read");
+        let file = dir.join("a.txt");
+        std::fs::write(&file, "12345").unwrap();
+        assert_eq!(read_text(&file, 5).unwrap(), "12345");
+        assert!(
+            read_text(&file, 4)
+                .unwrap_err()
+                .contains("larger than 4 bytes")
+        );
+        assert!(
+            read_text(Path::new("/dev/zero"), 5)
+                .unwrap_err()
+                .contains("not a regular file")
+        );
+        assert!(read_text(&dir, 5).unwrap_err().contains("is a directory"));
+        std::fs::write(&file, [0x66, 0xff, 0x66]).unwrap();
+        assert!(
+            read_text(&file, 5)
+                .unwrap_err()
+                .contains("not UTF-8 text (at byte 1)")
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

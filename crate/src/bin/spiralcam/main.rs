@@ -38,6 +38,7 @@ const USAGE: &str = "usage:
 pub const MAX_JOB_BYTES: u64 = MAX_DATA_BYTES;
 
 /// How a command failed.
+#[derive(Debug)]
 pub enum Failure {
     /// The command line is wrong: exit 2 with the usage.
     Usage(String),

@@ -174,7 +174,7 @@ pub const MAX_HEIGHT_MM: f64 = 1000.0;
 fn check_heights(probes: &[Probe]) -> Result<(), FieldError> {
     for p in probes.iter().flat_map(|p| &p.points) {
         for z in [p.z, p.contact[2]] {
-            if !(z.abs() <= MAX_HEIGHT_MM) {
+            if z.is_nan() || z.abs() > MAX_HEIGHT_MM {
                 return Err(FieldError::new(
                     "surface",
                     format!(

@@ -136,7 +136,7 @@ fn replacement(rng: &mut Rng, old: &Value) -> Value {
             let k = rng.below(25) as i32 - 12;
             let y = x * 10f64.powi(k);
             // An integer field keeps an integer where the scaled value is one.
-            match (old.is_u64(), y.fract() == 0.0 && y >= 0.0 && y < 1e19) {
+            match (old.is_u64(), y.fract() == 0.0 && (0.0..1e19).contains(&y)) {
                 (true, true) => json!(y as u64),
                 _ => json!(y),
             }
@@ -332,7 +332,7 @@ fn mutated_example_jobs_end_quickly_and_cleanly() {
         *named.entry(field).or_default() += 1;
     }
     let mut named: Vec<_> = named.into_iter().collect();
-    named.sort_by(|a, b| b.1.cmp(&a.1));
+    named.sort_by_key(|n| std::cmp::Reverse(n.1));
     println!("refusals by what they name: {named:?}");
     let slowest = done.iter().max_by_key(|c| c.took).unwrap();
     println!(

@@ -25,6 +25,7 @@ pub(crate) mod cell_grid;
 pub mod composite;
 pub mod compound_eye;
 pub mod data_file;
+pub mod family_tag;
 pub mod jet;
 pub mod lens_array;
 pub mod nurbs;
@@ -41,7 +42,7 @@ pub mod xy_polynomial;
 pub mod zernike;
 
 use crate::field::FieldError;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 use thiserror::Error;
 
 pub use asphere::{Asphere, AsphereSpec};
@@ -246,8 +247,9 @@ pub trait Surface: Send + Sync + std::fmt::Debug {
     fn describe(&self) -> String;
 }
 
-/// The surface of a job, one of the families (JSON: an object with `"type"` naming the family).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+/// The surface of a job, one of the families (JSON: an object with `"type"` naming the family;
+/// read by [`family_tag`], which keeps the path of an error inside it).
+#[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "type", rename_all = "snake_case")]
 pub enum SurfaceSpec {
     /// Even asphere (plane and sphere included).

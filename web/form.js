@@ -24,6 +24,14 @@ export const SURFACES = {
       { key: 'coefficients', kind: 'coefficients' },
     ],
   },
+  odd_asphere: {
+    label: 'Odd asphere (β1·r + β2·r² + …)',
+    fields: [
+      { kind: 'radius', label: 'Vertex' },
+      { key: 'conic', label: 'Conic k', unit: '', hint: '0 sphere, −1 paraboloid', optionalNumber: true },
+      { key: 'coefficients', kind: 'list', label: 'Coefficients β1, β2, … (mm^(1−n))', hint: 'β1 multiplies r¹ (OpticStudio Odd Asphere order); at most 30' },
+    ],
+  },
   xy_polynomial: {
     label: 'XY polynomial',
     fields: [
@@ -41,6 +49,31 @@ export const SURFACES = {
       { key: 'base.conic', label: 'Base conic k', unit: '', optionalNumber: true },
       { key: 'norm_radius_mm', label: 'Normalisation radius N', unit: 'mm', hint: '> 0' },
       { key: 'coefficients_mm', kind: 'list', label: 'Coefficients c₁, c₂, … (mm)', hint: 'in index order of the convention; see crate/docs/zernike.md' },
+    ],
+  },
+  q_bfs: {
+    label: 'Q-bfs asphere (Forbes 2007)',
+    fields: [
+      { kind: 'radius', label: 'Best-fit sphere' },
+      { key: 'norm_radius_mm', label: 'Normalisation radius N', unit: 'mm', hint: '> 0' },
+      { key: 'coefficients_mm', kind: 'list', label: 'Coefficients a0, a1, … (mm)', hint: 'at most 31' },
+    ],
+  },
+  q_con: {
+    label: 'Q-con asphere (Forbes 2007)',
+    fields: [
+      { kind: 'radius', label: 'Vertex' },
+      { key: 'conic', label: 'Conic k', unit: '', optionalNumber: true },
+      { key: 'norm_radius_mm', label: 'Normalisation radius N', unit: 'mm', hint: '> 0' },
+      { key: 'coefficients_mm', kind: 'list', label: 'Coefficients a0, a1, … (mm)', hint: 'at most 31' },
+    ],
+  },
+  q_2d: {
+    label: 'Q-2D freeform (Forbes 2012)',
+    fields: [
+      { kind: 'radius', label: 'Best-fit sphere' },
+      { key: 'norm_radius_mm', label: 'Normalisation radius N', unit: 'mm', hint: '> 0' },
+      { key: 'terms', kind: 'json', rows: 8, label: 'Terms (JSON list)', hint: '[{"n", "m", "a_mm" (cos mθ), "b_mm" (sin mθ)}], n, m ≤ 30; m = 0: the Q-bfs part' },
     ],
   },
   biconic: {
@@ -204,6 +237,13 @@ export const PRESETS = {
 const FAMILY_DEFAULTS = {
   lens_array: { lens_radius_mm: 2.84, aperture_mm: 1, pitch_mm: 1, grid: 'rectangular', form: 'concave' },
   asphere: { radius_mm: 40, conic: 0 },
+  odd_asphere: { radius_mm: 50, conic: -0.8, coefficients: [0, 0, 2e-5, -1.5e-6, 4e-8] },
+  q_bfs: { radius_mm: 40, norm_radius_mm: 5, coefficients_mm: [0.01, -0.002, 0.0008] },
+  q_con: { radius_mm: 40, conic: -1, norm_radius_mm: 5, coefficients_mm: [0.005, -0.0015, 0.0005] },
+  q_2d: {
+    radius_mm: 60, norm_radius_mm: 5,
+    terms: [{ n: 0, m: 0, a_mm: 0.003 }, { n: 0, m: 2, a_mm: 0.002 }, { n: 1, m: 1, a_mm: 0.0005, b_mm: -0.0003 }],
+  },
   xy_polynomial: { base: { radius_mm: 80 }, norm_radius_mm: 5, terms: [{ x: 2, y: 1, coefficient_mm: 0.001 }] },
   sinusoid: { amplitude_mm: 0.002, wavelength_x_mm: 1, wavelength_y_mm: 1, phase_x_deg: 0, phase_y_deg: 0 },
   zernike: { convention: 'standard', base: { radius_mm: 100 }, norm_radius_mm: 5, coefficients_mm: [0, 0, 0, 0, 0.001, 0, 0.0005] },

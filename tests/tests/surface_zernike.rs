@@ -18,7 +18,8 @@
 mod common;
 
 use common::{
-    check_derivatives, check_example_jobs, check_planned_path, config, field_error, local,
+    check_derivatives, check_example_jobs, check_planned_path, config, field_error, gauss_legendre,
+    local,
 };
 use proptest::prelude::*;
 use spiralcam::surface::zernike::Convention;
@@ -326,33 +327,6 @@ fn every_term_matches_the_recurrence() {
             }
         }
     }
-}
-
-/// Nodes and weights of Gauss–Legendre quadrature on [0, 1] with `k` nodes: Newton's method on
-/// Pₖ from the three-term recurrence, weights `2/((1 − x²)·Pₖ′(x)²)` halved for [0, 1].
-fn gauss_legendre(k: usize) -> Vec<(f64, f64)> {
-    (0..k)
-        .map(|i| {
-            let mut x = (PI * (i as f64 + 0.75) / (k as f64 + 0.5)).cos();
-            let mut dp = 0.0;
-            for _ in 0..100 {
-                let (mut p0, mut p1) = (1.0, x);
-                for n in 2..=k {
-                    let p2 = ((2 * n - 1) as f64 * x * p1 - (n - 1) as f64 * p0) / n as f64;
-                    p0 = p1;
-                    p1 = p2;
-                }
-                dp = k as f64 * (x * p1 - p0) / (x * x - 1.0);
-                let step = p1 / dp;
-                x -= step;
-                if step.abs() < 1e-16 {
-                    break;
-                }
-            }
-            let w = 2.0 / ((1.0 - x * x) * dp * dp);
-            ((x + 1.0) / 2.0, w / 2.0)
-        })
-        .collect()
 }
 
 /// The quadrature nodes (x, y) on the unit disc and weights w with `Σ w·f ≈ ∫ f dA / π`.

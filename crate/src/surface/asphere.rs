@@ -113,7 +113,7 @@ impl Asphere {
     }
 
     /// z, z_s and z_ss as functions of s = r², or the reason there is none.
-    fn in_s(&self, s: f64) -> Result<[f64; 3], String> {
+    pub(crate) fn in_s(&self, s: f64) -> Result<[f64; 3], String> {
         let (c, k) = (self.c, self.k);
         let q = 1.0 - (1.0 + k) * c * c * s;
         if q <= 0.0 {
@@ -140,6 +140,11 @@ impl Asphere {
         Ok([z, zs, zss])
     }
 
+    /// The curvature c, 1/mm.
+    pub fn curvature_per_mm(&self) -> f64 {
+        self.c
+    }
+
     fn undefined(&self, x: f64, y: f64, reason: String) -> UndefinedError {
         UndefinedError {
             surface: "even asphere",
@@ -151,19 +156,25 @@ impl Asphere {
     }
 }
 
+/// The local values at (x, y) of a surface of revolution given as z(s), s = r², by
+/// `[z, dz/ds, d²z/ds²]`: `∂z/∂x = 2x·z_s`, `∂²z/∂x² = 2z_s + 4x²·z_ss`, `∂²z/∂x∂y = 4xy·z_ss`.
+pub(crate) fn radial_local(x: f64, y: f64, [z, zs, zss]: [f64; 3]) -> Local {
+    Local {
+        z,
+        zx: 2.0 * x * zs,
+        zy: 2.0 * y * zs,
+        zxx: 2.0 * zs + 4.0 * x * x * zss,
+        zxy: 4.0 * x * y * zss,
+        zyy: 2.0 * zs + 4.0 * y * y * zss,
+    }
+}
+
 impl Surface for Asphere {
     fn local(&self, x: f64, y: f64) -> Result<Local, UndefinedError> {
-        let [z, zs, zss] = self
+        let z = self
             .in_s(x * x + y * y)
             .map_err(|r| self.undefined(x, y, r))?;
-        Ok(Local {
-            z,
-            zx: 2.0 * x * zs,
-            zy: 2.0 * y * zs,
-            zxx: 2.0 * zs + 4.0 * x * x * zss,
-            zxy: 4.0 * x * y * zss,
-            zyy: 2.0 * zs + 4.0 * y * y * zss,
-        })
+        Ok(radial_local(x, y, z))
     }
 
     fn feature_length_mm(&self) -> f64 {

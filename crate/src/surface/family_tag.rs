@@ -36,6 +36,10 @@ pub const FAMILIES: &[&str] = &[
     "step_face",
     "scattered",
     "composite",
+    "odd_asphere",
+    "q_bfs",
+    "q_con",
+    "q_2d",
 ];
 
 /// The spec of family `name` read from `de` (the object without its tag); `None` for an
@@ -63,6 +67,10 @@ fn family<'de, D: Deserializer<'de>>(name: &str, de: D) -> Option<Result<Surface
         "step_face" => read!(StepFace),
         "scattered" => read!(Scattered),
         "composite" => read!(Composite),
+        "odd_asphere" => read!(OddAsphere),
+        "q_bfs" => read!(QBfs),
+        "q_con" => read!(QCon),
+        "q_2d" => read!(Q2d),
         _ => return None,
     })
 }

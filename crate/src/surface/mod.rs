@@ -29,9 +29,14 @@ pub mod family_tag;
 pub mod jet;
 pub mod lens_array;
 pub mod nurbs;
+pub mod odd_asphere;
 pub mod off_axis_conic;
 pub mod pal;
 pub mod polynomial;
+pub mod q_2d;
+pub mod q_bfs;
+pub mod q_con;
+pub mod q_polynomials;
 pub mod reframed;
 pub mod scattered;
 pub mod sinusoid;
@@ -52,8 +57,12 @@ pub use compound_eye::{CompoundEye, CompoundEyeSpec};
 pub use data_file::DataFile;
 pub use lens_array::{LensArray, LensArraySpec};
 pub use nurbs::{Nurbs, NurbsSpec};
+pub use odd_asphere::{OddAsphere, OddAsphereSpec};
 pub use off_axis_conic::{OffAxisConic, OffAxisConicSpec};
 pub use pal::{Pal, PalSpec};
+pub use q_2d::{Q2d, Q2dSpec};
+pub use q_bfs::{QBfs, QBfsSpec};
+pub use q_con::{QCon, QConSpec};
 pub use reframed::Reframed;
 pub use scattered::{Scattered, ScatteredSpec};
 pub use sinusoid::{Sinusoid, SinusoidSpec};
@@ -282,6 +291,15 @@ pub enum SurfaceSpec {
     Scattered(ScatteredSpec),
     /// A base plus decentred and rotated terms.
     Composite(CompositeSpec),
+    /// Odd asphere: conic plus β1·r + β2·r² + … (OpticStudio "Odd Asphere").
+    OddAsphere(OddAsphereSpec),
+    /// Forbes' Qbfs asphere (best-fit sphere plus normal departure, 2007).
+    QBfs(QBfsSpec),
+    /// Forbes' Qcon asphere (conic plus sag departure, 2007).
+    QCon(QConSpec),
+    /// Forbes' Q₂D freeform polynomials on a best-fit sphere (2012).
+    #[serde(rename = "q_2d")]
+    Q2d(Q2dSpec),
 }
 
 impl SurfaceSpec {
@@ -310,6 +328,10 @@ impl SurfaceSpec {
             SurfaceSpec::StepFace(s) => Box::new(StepFace::new(s, part)?),
             SurfaceSpec::Scattered(s) => Box::new(Scattered::new(s, part)?),
             SurfaceSpec::Composite(s) => Box::new(Composite::new(s, part)?),
+            SurfaceSpec::OddAsphere(s) => Box::new(OddAsphere::new(s)?),
+            SurfaceSpec::QBfs(s) => Box::new(QBfs::new(s)?),
+            SurfaceSpec::QCon(s) => Box::new(QCon::new(s)?),
+            SurfaceSpec::Q2d(s) => Box::new(Q2d::new(s)?),
         })
     }
 

@@ -76,6 +76,16 @@ export const SURFACES = {
       { key: 'terms', kind: 'json', rows: 8, label: 'Terms (JSON list)', hint: '[{"n", "m", "a_mm" (cos mθ), "b_mm" (sin mθ)}], n, m ≤ 30; m = 0: the Q-bfs part' },
     ],
   },
+  chebyshev: {
+    label: 'Chebyshev polynomial',
+    fields: [
+      { kind: 'radius', object: 'base', label: 'Base vertex' },
+      { key: 'base.conic', label: 'Base conic k', unit: '', optionalNumber: true },
+      { key: 'half_width_x_mm', label: 'Half-width X0', unit: 'mm', hint: '> 0; blank: the part radius', optionalNumber: true },
+      { key: 'half_width_y_mm', label: 'Half-width Y0', unit: 'mm', hint: '> 0; blank: the part radius', optionalNumber: true },
+      { key: 'terms', kind: 'json', rows: 8, label: 'Terms (JSON list)', hint: '[{"x": i, "y": j, "coefficient_mm": c}]: c·Ti(x/X0)·Tj(y/Y0), i, j ≤ 20' },
+    ],
+  },
   biconic: {
     label: 'Biconic',
     fields: [
@@ -243,6 +253,10 @@ const FAMILY_DEFAULTS = {
   q_2d: {
     radius_mm: 60, norm_radius_mm: 5,
     terms: [{ n: 0, m: 0, a_mm: 0.003 }, { n: 0, m: 2, a_mm: 0.002 }, { n: 1, m: 1, a_mm: 0.0005, b_mm: -0.0003 }],
+  },
+  chebyshev: {
+    base: { radius_mm: 80 },
+    terms: [{ x: 2, y: 0, coefficient_mm: 0.002 }, { x: 0, y: 2, coefficient_mm: -0.0015 }, { x: 1, y: 2, coefficient_mm: 0.0008 }],
   },
   xy_polynomial: { base: { radius_mm: 80 }, norm_radius_mm: 5, terms: [{ x: 2, y: 1, coefficient_mm: 0.001 }] },
   sinusoid: { amplitude_mm: 0.002, wavelength_x_mm: 1, wavelength_y_mm: 1, phase_x_deg: 0, phase_y_deg: 0 },

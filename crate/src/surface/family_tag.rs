@@ -40,6 +40,7 @@ pub const FAMILIES: &[&str] = &[
     "q_bfs",
     "q_con",
     "q_2d",
+    "chebyshev",
 ];
 
 /// The spec of family `name` read from `de` (the object without its tag); `None` for an
@@ -71,6 +72,7 @@ fn family<'de, D: Deserializer<'de>>(name: &str, de: D) -> Option<Result<Surface
         "q_bfs" => read!(QBfs),
         "q_con" => read!(QCon),
         "q_2d" => read!(Q2d),
+        "chebyshev" => read!(Chebyshev),
         _ => return None,
     })
 }

@@ -22,6 +22,7 @@
 pub mod asphere;
 pub mod biconic;
 pub(crate) mod cell_grid;
+pub mod chebyshev;
 pub mod composite;
 pub mod compound_eye;
 pub mod data_file;
@@ -52,6 +53,7 @@ use thiserror::Error;
 
 pub use asphere::{Asphere, AsphereSpec};
 pub use biconic::{Biconic, BiconicSpec};
+pub use chebyshev::{Chebyshev, ChebyshevSpec};
 pub use composite::{Composite, CompositeSpec, Placed, TermSpec};
 pub use compound_eye::{CompoundEye, CompoundEyeSpec};
 pub use data_file::DataFile;
@@ -254,6 +256,13 @@ pub trait Surface: Send + Sync + std::fmt::Debug {
 
     /// One line restating the definition, for NC headers and reports.
     fn describe(&self) -> String;
+
+    /// Findings about the definition that the operator must read before cutting (a zone
+    /// boundary whose slope jumps, a polynomial extrapolated beyond its normalisation); the
+    /// plan's report lists them with its own warnings. None by default.
+    fn warnings(&self) -> Vec<String> {
+        Vec::new()
+    }
 }
 
 /// The surface of a job, one of the families (JSON: an object with `"type"` naming the family;
@@ -300,6 +309,8 @@ pub enum SurfaceSpec {
     /// Forbes' Q₂D freeform polynomials on a best-fit sphere (2012).
     #[serde(rename = "q_2d")]
     Q2d(Q2dSpec),
+    /// Chebyshev polynomials Tᵢ(x/X₀)·Tⱼ(y/Y₀) on a conic base.
+    Chebyshev(ChebyshevSpec),
 }
 
 impl SurfaceSpec {
@@ -332,6 +343,7 @@ impl SurfaceSpec {
             SurfaceSpec::QBfs(s) => Box::new(QBfs::new(s)?),
             SurfaceSpec::QCon(s) => Box::new(QCon::new(s)?),
             SurfaceSpec::Q2d(s) => Box::new(Q2d::new(s)?),
+            SurfaceSpec::Chebyshev(s) => Box::new(Chebyshev::new(s, part)?),
         })
     }
 

@@ -32,6 +32,12 @@ export const SURFACES = {
       { key: 'coefficients', kind: 'list', label: 'Coefficients β1, β2, … (mm^(1−n))', hint: 'β1 multiplies r¹ (OpticStudio Odd Asphere order); at most 30' },
     ],
   },
+  zoned_asphere: {
+    label: 'Zoned asphere (concentric zones)',
+    fields: [
+      { key: 'zones', kind: 'json', rows: 12, label: 'Zones (JSON list, from the axis out)', hint: '[{"outer_radius_mm", "radius_mm" or "curvature_per_mm", "conic", "coefficients" [A4 …], "offset_mm"}]; the last zone may omit its outer radius' },
+    ],
+  },
   xy_polynomial: {
     label: 'XY polynomial',
     fields: [
@@ -257,6 +263,12 @@ const FAMILY_DEFAULTS = {
   chebyshev: {
     base: { radius_mm: 80 },
     terms: [{ x: 2, y: 0, coefficient_mm: 0.002 }, { x: 0, y: 2, coefficient_mm: -0.0015 }, { x: 1, y: 2, coefficient_mm: 0.0008 }],
+  },
+  zoned_asphere: {
+    zones: [
+      { outer_radius_mm: 1, radius_mm: 40, conic: -1 },
+      { radius_mm: 45, conic: -1, offset_mm: 0.001388888888889 },
+    ],
   },
   xy_polynomial: { base: { radius_mm: 80 }, norm_radius_mm: 5, terms: [{ x: 2, y: 1, coefficient_mm: 0.001 }] },
   sinusoid: { amplitude_mm: 0.002, wavelength_x_mm: 1, wavelength_y_mm: 1, phase_x_deg: 0, phase_y_deg: 0 },

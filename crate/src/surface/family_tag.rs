@@ -41,6 +41,7 @@ pub const FAMILIES: &[&str] = &[
     "q_con",
     "q_2d",
     "chebyshev",
+    "zoned_asphere",
 ];
 
 /// The spec of family `name` read from `de` (the object without its tag); `None` for an
@@ -73,6 +74,7 @@ fn family<'de, D: Deserializer<'de>>(name: &str, de: D) -> Option<Result<Surface
         "q_con" => read!(QCon),
         "q_2d" => read!(Q2d),
         "chebyshev" => read!(Chebyshev),
+        "zoned_asphere" => read!(ZonedAsphere),
         _ => return None,
     })
 }

@@ -46,6 +46,7 @@ pub mod tilted_flat;
 pub mod toroid;
 pub mod xy_polynomial;
 pub mod zernike;
+pub mod zoned_asphere;
 
 use crate::field::FieldError;
 use serde::Serialize;
@@ -73,6 +74,7 @@ pub use tilted_flat::{TiltedFlat, TiltedFlatSpec};
 pub use toroid::{Toroid, ToroidSpec};
 pub use xy_polynomial::{XyPolynomial, XyPolynomialSpec};
 pub use zernike::{Zernike, ZernikeSpec};
+pub use zoned_asphere::{ZonedAsphere, ZonedAsphereSpec};
 
 /// Sag and its first and second derivatives at one point (mm, mm/mm, 1/mm).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -311,6 +313,8 @@ pub enum SurfaceSpec {
     Q2d(Q2dSpec),
     /// Chebyshev polynomials Tᵢ(x/X₀)·Tⱼ(y/Y₀) on a conic base.
     Chebyshev(ChebyshevSpec),
+    /// Concentric zones, each its own even asphere.
+    ZonedAsphere(ZonedAsphereSpec),
 }
 
 impl SurfaceSpec {
@@ -344,6 +348,7 @@ impl SurfaceSpec {
             SurfaceSpec::QCon(s) => Box::new(QCon::new(s)?),
             SurfaceSpec::Q2d(s) => Box::new(Q2d::new(s)?),
             SurfaceSpec::Chebyshev(s) => Box::new(Chebyshev::new(s, part)?),
+            SurfaceSpec::ZonedAsphere(s) => Box::new(ZonedAsphere::new(s)?),
         })
     }
 

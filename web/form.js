@@ -195,6 +195,13 @@ export const SURFACES = {
       { key: 'rbf_scale', label: 'RBF scale', unit: '× spacing', hint: '0.01 … 100, blank: 1', optionalNumber: true, when: { field: 'method', is: ['rbf'] } },
     ],
   },
+  grid_sag: {
+    label: 'Grid Sag (Zemax .DAT)',
+    fields: [
+      { key: 'data', kind: 'file', accept: '.dat,.DAT,.txt', label: 'Grid Sag file', hint: 'nx ny delx dely unitflag xdec ydec, then z dz/dx dz/dy d2z/dxdy [nodata] per point' },
+      { key: 'base', kind: 'json', rows: 2, label: 'Base asphere (JSON; null = plane)', hint: '{"radius_mm": R, "conic": k, "coefficients": [A4, …]}' },
+    ],
+  },
   composite: {
     label: 'Composite (base + terms)',
     fields: [
@@ -295,6 +302,7 @@ const FAMILY_DEFAULTS = {
   },
   step_face: { file: {} },
   scattered: { data: {}, method: 'rbf' },
+  grid_sag: { data: {} },
   composite: {
     base: { type: 'asphere', radius_mm: 60 },
     terms: [{

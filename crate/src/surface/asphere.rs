@@ -145,6 +145,11 @@ impl Asphere {
         self.c
     }
 
+    /// Whether the surface is the plane z = 0 (no curvature, no terms).
+    pub fn is_plane(&self) -> bool {
+        self.c == 0.0 && self.a.iter().all(|&a| a == 0.0)
+    }
+
     fn undefined(&self, x: f64, y: f64, reason: String) -> UndefinedError {
         UndefinedError {
             surface: "even asphere",

@@ -42,6 +42,7 @@ pub const FAMILIES: &[&str] = &[
     "q_2d",
     "chebyshev",
     "zoned_asphere",
+    "grid_sag",
 ];
 
 /// The spec of family `name` read from `de` (the object without its tag); `None` for an
@@ -75,6 +76,7 @@ fn family<'de, D: Deserializer<'de>>(name: &str, de: D) -> Option<Result<Surface
         "q_2d" => read!(Q2d),
         "chebyshev" => read!(Chebyshev),
         "zoned_asphere" => read!(ZonedAsphere),
+        "grid_sag" => read!(GridSag),
         _ => return None,
     })
 }

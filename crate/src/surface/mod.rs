@@ -27,6 +27,7 @@ pub mod composite;
 pub mod compound_eye;
 pub mod data_file;
 pub mod family_tag;
+pub mod grid_sag;
 pub mod jet;
 pub mod lens_array;
 pub mod nurbs;
@@ -58,6 +59,7 @@ pub use chebyshev::{Chebyshev, ChebyshevSpec};
 pub use composite::{Composite, CompositeSpec, Placed, TermSpec};
 pub use compound_eye::{CompoundEye, CompoundEyeSpec};
 pub use data_file::DataFile;
+pub use grid_sag::{GridSag, GridSagSpec};
 pub use lens_array::{LensArray, LensArraySpec};
 pub use nurbs::{Nurbs, NurbsSpec};
 pub use odd_asphere::{OddAsphere, OddAsphereSpec};
@@ -315,6 +317,8 @@ pub enum SurfaceSpec {
     Chebyshev(ChebyshevSpec),
     /// Concentric zones, each its own even asphere.
     ZonedAsphere(ZonedAsphereSpec),
+    /// Zemax Grid Sag: a `.DAT` grid of sags on a base asphere, bicubic between points.
+    GridSag(GridSagSpec),
 }
 
 impl SurfaceSpec {
@@ -349,14 +353,17 @@ impl SurfaceSpec {
             SurfaceSpec::Q2d(s) => Box::new(Q2d::new(s)?),
             SurfaceSpec::Chebyshev(s) => Box::new(Chebyshev::new(s, part)?),
             SurfaceSpec::ZonedAsphere(s) => Box::new(ZonedAsphere::new(s)?),
+            SurfaceSpec::GridSag(s) => Box::new(GridSag::new(s)?),
         })
     }
 
-    /// The data files the surface refers to (scattered points, STEP files), in composites too.
+    /// The data files the surface refers to (scattered points, STEP files, Grid Sag DATs), in
+    /// composites too.
     pub fn data_files_mut(&mut self) -> Vec<&mut DataFile> {
         match self {
             SurfaceSpec::StepFace(s) => vec![&mut s.file],
             SurfaceSpec::Scattered(s) => vec![&mut s.data],
+            SurfaceSpec::GridSag(s) => vec![&mut s.data],
             SurfaceSpec::Composite(c) => {
                 let mut files = c.base.data_files_mut();
                 for t in &mut c.terms {

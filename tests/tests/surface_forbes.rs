@@ -20,6 +20,7 @@ mod common;
 
 use common::{
     check_derivatives, check_example_jobs, check_planned_path, config, field_error, gauss_legendre,
+    small_job,
 };
 use proptest::prelude::*;
 use spiralcam::surface::q_2d::Q2dTerm;
@@ -593,34 +594,28 @@ fn bad_parameters_name_their_field() {
     }
 }
 
-/// A small job: Ø3 mm part, nose r 0.1 mm, 0.15 mm feed, 24 points per revolution.
-fn job(name: &str, surface: &str) -> String {
-    format!(
-        r#"{{"name":"{name}","part":{{"diameter_mm":3}},"surface":{surface},
-            "tool":{{"nose_radius_mm":0.1,"included_angle_deg":100}},"machine":{{"spindle_rpm":300}},
-            "strategy":{{"feed_mm_per_rev":0.15,"sampling":{{"type":"constant_angle","points_per_rev":24}}}}}}"#
-    )
-}
-
 #[test]
 fn planned_paths_touch_without_cutting() {
     // Departures of a few µm on spheres of |R| ≥ 30 mm: slopes below 0.05 and curvatures below
     // 0.05 mm⁻¹ keep the sampling bound of 2000 nose-angle steps near 0.012 nm.
     let none = |_: f64, _: f64| Vec::new();
     let jobs = [
-        job(
+        small_job(
             "q-bfs",
             r#"{"type":"q_bfs","radius_mm":-30,"norm_radius_mm":1.5,"coefficients_mm":[0.003,-0.001,0.0005]}"#,
+            3.0,
         ),
-        job(
+        small_job(
             "q-con",
             r#"{"type":"q_con","radius_mm":40,"conic":-2,"norm_radius_mm":1.5,"coefficients_mm":[0.002,0.001,-0.0005]}"#,
+            3.0,
         ),
-        job(
+        small_job(
             "q-2d",
             r#"{"type":"q_2d","curvature_per_mm":0,"norm_radius_mm":1.5,"terms":[
                 {"n":0,"m":0,"a_mm":0.002},{"n":0,"m":2,"a_mm":0.002,"b_mm":-0.001},
                 {"n":1,"m":1,"a_mm":0.0008},{"n":0,"m":3,"b_mm":0.0006}]}"#,
+            3.0,
         ),
     ];
     for j in jobs {

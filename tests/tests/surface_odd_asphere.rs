@@ -7,7 +7,9 @@
 
 mod common;
 
-use common::{check_derivatives, check_example_jobs, check_planned_path, config, field_error};
+use common::{
+    check_derivatives, check_example_jobs, check_planned_path, config, field_error, small_job,
+};
 use proptest::prelude::*;
 use spiralcam::surface::{Line, OddAsphere, OddAsphereSpec, Surface};
 use std::f64::consts::PI;
@@ -152,29 +154,22 @@ fn bad_parameters_name_their_field() {
     );
 }
 
-/// A small job: Ø3 mm part, nose r 0.1 mm, 0.15 mm feed, 24 points per revolution.
-fn job(name: &str, surface: &str) -> String {
-    format!(
-        r#"{{"name":"{name}","part":{{"diameter_mm":3}},"surface":{surface},
-            "tool":{{"nose_radius_mm":0.1,"included_angle_deg":100}},"machine":{{"spindle_rpm":300}},
-            "strategy":{{"feed_mm_per_rev":0.15,"sampling":{{"type":"constant_angle","points_per_rev":24}}}}}}"#
-    )
-}
-
 #[test]
 fn planned_paths_touch_without_cutting() {
     // Smooth: r³ and r⁵ terms on a sphere. With a cone (β1 = 2e-3, a 0.11° slope): its apex is
     // the kink at ρ = 0 of every radial section, sampled as such.
     let none = |_: f64, _: f64| Vec::new();
-    let smooth = job(
+    let smooth = small_job(
         "odd-smooth",
         r#"{"type":"odd_asphere","radius_mm":-40,"coefficients":[0,0,4e-4,0,-2e-5]}"#,
+        3.0,
     );
     assert!(check_planned_path(&smooth, &none, 2000) > 200);
     let apex = |_: f64, _: f64| vec![0.0];
-    let cone = job(
+    let cone = small_job(
         "odd-cone",
         r#"{"type":"odd_asphere","radius_mm":60,"coefficients":[2e-3,0,1e-4]}"#,
+        3.0,
     );
     assert!(check_planned_path(&cone, &apex, 2000) > 200);
 }

@@ -19,7 +19,7 @@ mod common;
 
 use common::{
     check_derivatives, check_example_jobs, check_planned_path, config, field_error, gauss_legendre,
-    local,
+    local, small_job,
 };
 use proptest::prelude::*;
 use spiralcam::surface::zernike::Convention;
@@ -722,28 +722,19 @@ fn the_documentation_tables_match_the_definitions() {
     assert_eq!(counts[1], 37);
 }
 
-/// A small job: Ø`diameter` mm part, nose r 0.1 mm, 0.15 mm feed, 24 points per revolution.
-fn job(name: &str, surface: &str, diameter: f64) -> String {
-    format!(
-        r#"{{"name":"{name}","part":{{"diameter_mm":{diameter}}},"surface":{surface},
-            "tool":{{"nose_radius_mm":0.1,"included_angle_deg":100}},"machine":{{"spindle_rpm":300}},
-            "strategy":{{"feed_mm_per_rev":0.15,"sampling":{{"type":"constant_angle","points_per_rev":24}}}}}}"#
-    )
-}
-
 #[test]
 fn planned_paths_touch_without_cutting() {
     // Few-µm astigmatism, coma, trefoil and spherical terms on a sphere and on a plane: slopes
     // below 0.1 and curvatures below 0.1 mm⁻¹ keep the sampling bound of 2000 nose-angle steps
     // (K·Δa²/8 with K ≤ 0.13 mm, Δa = 1.75/2000) near 0.012 nm, under the 0.02 nm asserted.
     let none = |_: f64, _: f64| Vec::new();
-    let standard = job(
+    let standard = small_job(
         "zernike-standard",
         r#"{"type":"zernike","convention":"standard","base":{"radius_mm":-30},"norm_radius_mm":1.5,
             "coefficients_mm":[0,0,0,0,0.002,-0.003,0.0015,0,0.002,0,0.001]}"#,
         3.0,
     );
-    let fringe = job(
+    let fringe = small_job(
         "zernike-fringe",
         r#"{"type":"zernike","convention":"fringe","base":{"curvature_per_mm":0},"norm_radius_mm":1.5,
             "coefficients_mm":[0,0.001,0,0,0.003,0,0,-0.002,0,0.002,0,0,0,0,0,0.0005]}"#,

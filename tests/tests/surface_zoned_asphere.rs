@@ -7,7 +7,9 @@
 
 mod common;
 
-use common::{check_derivatives, check_example_jobs, check_planned_path, config, field_error};
+use common::{
+    check_derivatives, check_example_jobs, check_planned_path, config, field_error, small_job,
+};
 use proptest::prelude::*;
 use spiralcam::surface::zoned_asphere::ZoneSpec;
 use spiralcam::surface::{Line, Surface, ZonedAsphere, ZonedAsphereSpec};
@@ -198,10 +200,11 @@ fn warnings_follow_the_documented_thresholds() {
 
 #[test]
 fn the_report_carries_the_warning() {
-    let job = spiralcam::job::Job::from_json(&job(
+    let job = spiralcam::job::Job::from_json(&small_job(
         "zoned",
         r#"{"type":"zoned_asphere","zones":[{"outer_radius_mm":0.8,"radius_mm":30},
             {"radius_mm":-30,"offset_mm":0.0213}]}"#,
+        3.0,
     ))
     .unwrap();
     let report = spiralcam::plan::Planner::new(&job)
@@ -267,31 +270,24 @@ fn bad_parameters_name_their_field() {
     );
 }
 
-/// A small job: Ø3 mm part, nose r 0.1 mm, 0.15 mm feed, 24 points per revolution.
-fn job(name: &str, surface: &str) -> String {
-    format!(
-        r#"{{"name":"{name}","part":{{"diameter_mm":3}},"surface":{surface},
-            "tool":{{"nose_radius_mm":0.1,"included_angle_deg":100}},"machine":{{"spindle_rpm":300}},
-            "strategy":{{"feed_mm_per_rev":0.15,"sampling":{{"type":"constant_angle","points_per_rev":24}}}}}}"#
-    )
-}
-
 #[test]
 fn planned_paths_touch_without_cutting() {
     // Three zones meeting in value with convex and concave slope jumps, and a 2 µm step: the
     // boundary circles at 0.6 and 1.1 mm are the kinks of every radial section.
     let kinks = |_: f64, _: f64| vec![-1.1, -0.6, 0.6, 1.1];
-    let continuous = job(
+    let continuous = small_job(
         "zoned",
         r#"{"type":"zoned_asphere","zones":[{"outer_radius_mm":0.6,"radius_mm":40,"conic":-1},
             {"outer_radius_mm":1.1,"radius_mm":50,"conic":-1,"offset_mm":0.0009},
             {"radius_mm":40,"conic":-1,"offset_mm":-0.002125}]}"#,
+        3.0,
     );
     assert!(check_planned_path(&continuous, &kinks, 2000) > 200);
-    let stepped = job(
+    let stepped = small_job(
         "zoned-step",
         r#"{"type":"zoned_asphere","zones":[{"outer_radius_mm":0.6,"radius_mm":-30},
             {"outer_radius_mm":1.1,"radius_mm":-30,"offset_mm":0.002},{"radius_mm":-35}]}"#,
+        3.0,
     );
     assert!(check_planned_path(&stepped, &kinks, 2000) > 200);
 }

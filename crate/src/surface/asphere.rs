@@ -145,19 +145,30 @@ impl Asphere {
         self.c
     }
 
+    /// The definition without the family's name: `R 40 mm, k -1.2, A4 1.5e-6` (`plane, k 0`).
+    pub fn shape(&self) -> String {
+        let r = if self.c == 0.0 {
+            "plane".to_string()
+        } else {
+            format!("R {} mm", 1.0 / self.c)
+        };
+        let terms: Vec<String> = self
+            .a
+            .iter()
+            .enumerate()
+            .map(|(i, a)| format!("A{} {a:e}", 2 * i + 4))
+            .collect();
+        format!(
+            "{r}, k {}{}{}",
+            self.k,
+            if terms.is_empty() { "" } else { ", " },
+            terms.join(", ")
+        )
+    }
+
     /// Whether the surface is the plane z = 0 (no curvature, no terms).
     pub fn is_plane(&self) -> bool {
         self.c == 0.0 && self.a.iter().all(|&a| a == 0.0)
-    }
-
-    fn undefined(&self, x: f64, y: f64, reason: String) -> UndefinedError {
-        UndefinedError {
-            surface: "even asphere",
-            x_mm: x,
-            y_mm: y,
-            radius_mm: x.hypot(y),
-            reason,
-        }
     }
 }
 
@@ -174,12 +185,27 @@ pub(crate) fn radial_local(x: f64, y: f64, [z, zs, zss]: [f64; 3]) -> Local {
     }
 }
 
+/// [`radial_local`] of a surface of revolution whose `z(s)` is `z`, or the surface named
+/// `surface` undefined at (x, y) for the reason `z` gives.
+pub(crate) fn radial_at(
+    surface: &'static str,
+    x: f64,
+    y: f64,
+    z: Result<[f64; 3], String>,
+) -> Result<Local, UndefinedError> {
+    z.map(|z| radial_local(x, y, z))
+        .map_err(|reason| UndefinedError {
+            surface,
+            x_mm: x,
+            y_mm: y,
+            radius_mm: x.hypot(y),
+            reason,
+        })
+}
+
 impl Surface for Asphere {
     fn local(&self, x: f64, y: f64) -> Result<Local, UndefinedError> {
-        let z = self
-            .in_s(x * x + y * y)
-            .map_err(|r| self.undefined(x, y, r))?;
-        Ok(radial_local(x, y, z))
+        radial_at("even asphere", x, y, self.in_s(x * x + y * y))
     }
 
     fn feature_length_mm(&self) -> f64 {
@@ -187,23 +213,7 @@ impl Surface for Asphere {
     }
 
     fn describe(&self) -> String {
-        let r = if self.c == 0.0 {
-            "plane".to_string()
-        } else {
-            format!("R {} mm", 1.0 / self.c)
-        };
-        let terms: Vec<String> = self
-            .a
-            .iter()
-            .enumerate()
-            .map(|(i, a)| format!("A{} {a:e}", 2 * i + 4))
-            .collect();
-        format!(
-            "even asphere {r}, k {}{}{}",
-            self.k,
-            if terms.is_empty() { "" } else { ", " },
-            terms.join(", ")
-        )
+        format!("even asphere {}", self.shape())
     }
 }
 

@@ -11,13 +11,17 @@
 //! [`DataFile`]. A new surface type goes here: a file, a [`SurfaceSpec`] variant, derivative
 //! tests against finite differences.
 //!
-//! The families: even asphere ([`asphere`]), XY polynomial ([`xy_polynomial`]), Zernike
-//! ([`zernike`]), biconic ([`biconic`]), toroid ([`toroid`]), off-axis conic
-//! ([`off_axis_conic`]), tilted flat ([`tilted_flat`]), lens array ([`lens_array`], paper 004),
-//! sinusoid ([`sinusoid`]), compound eye ([`compound_eye`], papers 000/001), progressive lens
-//! ([`pal`], paper 003), NURBS ([`nurbs`]) and STEP faces ([`step_face`]), scattered data
-//! ([`scattered`], paper 004's RBF), and any base with decentred terms ([`composite`]);
-//! [`reframed`] sees any of them along its normal at a point.
+//! The families: even asphere ([`asphere`]), odd asphere ([`odd_asphere`]), zoned asphere
+//! ([`zoned_asphere`]), XY polynomial ([`xy_polynomial`]), Zernike ([`zernike`]), Forbes'
+//! Q-types ([`q_bfs`], [`q_con`], [`q_2d`], on [`q_polynomials`]), Chebyshev ([`chebyshev`]),
+//! biconic ([`biconic`]), toroid ([`toroid`]), off-axis conic ([`off_axis_conic`]), tilted flat
+//! ([`tilted_flat`]), lens array ([`lens_array`], paper 004), sinusoid ([`sinusoid`]), compound
+//! eye ([`compound_eye`], papers 000/001), progressive lens ([`pal`], paper 003), NURBS
+//! ([`nurbs`]) and STEP faces ([`step_face`]), scattered data ([`scattered`], paper 004's
+//! RBF), Zemax Grid Sag data ([`grid_sag`], with its `.DAT` reader and writer and the export of
+//! any surface to a grid), and any base with decentred terms ([`composite`]); [`reframed`] sees
+//! any of them along its normal at a point. A spec is read from its `"type"` by
+//! [`family_tag`].
 
 pub mod asphere;
 pub mod biconic;

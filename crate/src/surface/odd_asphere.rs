@@ -149,10 +149,9 @@ impl Surface for OddAsphere {
             .filter(|(_, b)| **b != 0.0)
             .map(|(i, b)| format!("β{} {b:e}", i + 1))
             .collect();
-        let conic = self.conic.describe();
-        let conic = conic.strip_prefix("even asphere ").unwrap_or(&conic);
         format!(
-            "odd asphere {conic}{}{}",
+            "odd asphere {}{}{}",
+            self.conic.shape(),
             if terms.is_empty() { "" } else { ", " },
             terms.join(", ")
         )

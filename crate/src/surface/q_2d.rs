@@ -267,11 +267,10 @@ impl Surface for Q2d {
                 (a, b) => format!("n{} m{} a {a:e} b {b:e}", t.n, t.m),
             })
             .collect();
-        let sphere = self.sphere.describe();
-        let sphere = sphere.strip_suffix(", k 0").unwrap_or(&sphere);
+        let sphere = self.sphere.shape();
         format!(
             "Q2D freeform (Forbes 2012) on the sphere {}, N {} mm [{}]",
-            sphere.strip_prefix("even asphere ").unwrap_or(sphere),
+            sphere.strip_suffix(", k 0").unwrap_or(&sphere),
             self.norm,
             terms.join(", ")
         )

@@ -13,8 +13,10 @@
 //! the polynomials continue (they are defined on the disc; a part larger than N is cut on their
 //! extension, as design software that extrapolates does).
 
-use super::asphere::radial_local;
-use super::q_polynomials::{QSum, check_coefficients, describe_coefficients, feature_length};
+use super::asphere::radial_at;
+use super::q_polynomials::{
+    QSum, check_coefficients, describe_coefficients, rotational_feature_length,
+};
 use super::{Asphere, AsphereSpec, Local, Surface, UndefinedError};
 use crate::field::{FieldError, positive};
 use serde::{Deserialize, Serialize};
@@ -89,30 +91,19 @@ impl QBfs {
 
 impl Surface for QBfs {
     fn local(&self, x: f64, y: f64) -> Result<Local, UndefinedError> {
-        let z = self.in_s(x * x + y * y).map_err(|reason| UndefinedError {
-            surface: "Qbfs asphere",
-            x_mm: x,
-            y_mm: y,
-            radius_mm: x.hypot(y),
-            reason,
-        })?;
-        Ok(radial_local(x, y, z))
+        radial_at("Qbfs asphere", x, y, self.in_s(x * x + y * y))
     }
 
-    /// [`feature_length`] of the highest order present (its degree in u² is n + 2).
+    /// [`rotational_feature_length`] of the coefficients.
     fn feature_length_mm(&self) -> f64 {
-        match self.a.iter().rposition(|&a| a != 0.0) {
-            Some(n) => feature_length(self.norm, n as f64 + 2.0),
-            None => f64::INFINITY,
-        }
+        rotational_feature_length(self.norm, &self.a)
     }
 
     fn describe(&self) -> String {
-        let sphere = self.sphere.describe();
-        let sphere = sphere.strip_suffix(", k 0").unwrap_or(&sphere);
+        let sphere = self.sphere.shape();
         format!(
             "Qbfs asphere (Forbes 2007) on the sphere {}, N {} mm [{}]",
-            sphere.strip_prefix("even asphere ").unwrap_or(sphere),
+            sphere.strip_suffix(", k 0").unwrap_or(&sphere),
             self.norm,
             describe_coefficients(&self.a)
         )

@@ -8,8 +8,10 @@
 //! `(ξ²S)_ss = (2S + 4ξS′ + ξ²S″)/N⁴`, added to the conic's ([`super::asphere`]). Undefined
 //! beyond the conic's rim; beyond u = 1 the polynomials continue.
 
-use super::asphere::radial_local;
-use super::q_polynomials::{QSum, check_coefficients, describe_coefficients, feature_length};
+use super::asphere::radial_at;
+use super::q_polynomials::{
+    QSum, check_coefficients, describe_coefficients, rotational_feature_length,
+};
 use super::{Asphere, AsphereSpec, Local, Surface, UndefinedError};
 use crate::field::{FieldError, positive};
 use serde::{Deserialize, Serialize};
@@ -77,29 +79,18 @@ impl QCon {
 
 impl Surface for QCon {
     fn local(&self, x: f64, y: f64) -> Result<Local, UndefinedError> {
-        let z = self.in_s(x * x + y * y).map_err(|reason| UndefinedError {
-            surface: "Qcon asphere",
-            x_mm: x,
-            y_mm: y,
-            radius_mm: x.hypot(y),
-            reason,
-        })?;
-        Ok(radial_local(x, y, z))
+        radial_at("Qcon asphere", x, y, self.in_s(x * x + y * y))
     }
 
-    /// [`feature_length`] of the highest order present (its degree in u² is n + 2).
+    /// [`rotational_feature_length`] of the coefficients.
     fn feature_length_mm(&self) -> f64 {
-        match self.a.iter().rposition(|&a| a != 0.0) {
-            Some(n) => feature_length(self.norm, n as f64 + 2.0),
-            None => f64::INFINITY,
-        }
+        rotational_feature_length(self.norm, &self.a)
     }
 
     fn describe(&self) -> String {
-        let conic = self.conic.describe();
         format!(
             "Qcon asphere (Forbes 2007) on the conic {}, N {} mm [{}]",
-            conic.strip_prefix("even asphere ").unwrap_or(&conic),
+            self.conic.shape(),
             self.norm,
             describe_coefficients(&self.a)
         )

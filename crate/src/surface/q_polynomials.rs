@@ -71,6 +71,15 @@ pub fn feature_length(norm: f64, degree_in_x: f64) -> f64 {
     1.5 * norm / (degree_in_x * degree_in_x)
 }
 
+/// [`feature_length`] of a rotationally symmetric sum (Qbfs or Qcon) with coefficients `a`:
+/// its highest order n present has degree n + 2 in u²; no terms, no feature.
+pub fn rotational_feature_length(norm: f64, a: &[f64]) -> f64 {
+    match a.iter().rposition(|&c| c != 0.0) {
+        Some(n) => feature_length(norm, n as f64 + 2.0),
+        None => f64::INFINITY,
+    }
+}
+
 /// A value with its first and second derivatives in x: `[p, dp/dx, d²p/dx²]`.
 pub type Jet1 = [f64; 3];
 

@@ -583,3 +583,13 @@ pub fn gauss_legendre(k: usize) -> Vec<(f64, f64)> {
         })
         .collect()
 }
+
+/// A small job for the gouge checks: a Ø`diameter_mm` part, nose r 0.1 mm and 100°, 0.15 mm
+/// feed, 24 points per revolution at 300 rpm.
+pub fn small_job(name: &str, surface: &str, diameter_mm: f64) -> String {
+    format!(
+        r#"{{"name":"{name}","part":{{"diameter_mm":{diameter_mm}}},"surface":{surface},
+            "tool":{{"nose_radius_mm":0.1,"included_angle_deg":100}},"machine":{{"spindle_rpm":300}},
+            "strategy":{{"feed_mm_per_rev":0.15,"sampling":{{"type":"constant_angle","points_per_rev":24}}}}}}"#
+    )
+}

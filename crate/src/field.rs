@@ -79,6 +79,49 @@ pub fn in_range(field: &str, value: f64, lo: f64, hi: f64) -> Result<f64, FieldE
     }
 }
 
+/// Marks a field path carried in front of a deserialisation message ([`nest_path`]): a control
+/// character that no message of serde or of this crate contains.
+const NESTED: char = '\u{1f}';
+
+/// The message of a deserialisation error seen at `path` inside a value that reads itself from a
+/// buffered copy (a surface spec, whose family is named by a key inside it): serde loses the path
+/// there, so the value's reader tracks it and puts it, marked, in front of the message, for the
+/// reader of the enclosing document to join to its own ([`join_path`]). A message that already
+/// carries a path (a surface inside a surface) gets the two joined.
+pub fn nest_path(path: &str, message: &str) -> String {
+    let (path, message) = join_path(path, message);
+    format!("{NESTED}{path}: {message}")
+}
+
+/// The full path and the message of a deserialisation error that the enclosing reader saw at
+/// `outer` (`.` or empty for the document itself): `outer` joined to the path the message carries
+/// ([`nest_path`]), if any, as `outer.inner` or `outer[i]…`.
+///
+/// ```
+/// use spiralcam::field::{join_path, nest_path};
+/// let inner = nest_path("base", "unknown field `type`");
+/// let outer = nest_path("terms[0].surface", &inner);
+/// assert_eq!(
+///     join_path("surface", &outer),
+///     ("surface.terms[0].surface.base".to_string(), "unknown field `type`".to_string())
+/// );
+/// assert_eq!(join_path(".", "missing field `name`"), (".".to_string(), "missing field `name`".to_string()));
+/// ```
+pub fn join_path(outer: &str, message: &str) -> (String, String) {
+    let Some((inner, rest)) = message
+        .strip_prefix(NESTED)
+        .and_then(|m| m.split_once(": "))
+    else {
+        return (outer.to_string(), message.to_string());
+    };
+    let path = match outer {
+        "" | "." => inner.to_string(),
+        _ if inner.starts_with('[') => format!("{outer}{inner}"),
+        _ => format!("{outer}.{inner}"),
+    };
+    (path, rest.to_string())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -24,6 +24,20 @@ export const SURFACES = {
       { key: 'coefficients', kind: 'coefficients' },
     ],
   },
+  odd_asphere: {
+    label: 'Odd asphere (β1·r + β2·r² + …)',
+    fields: [
+      { kind: 'radius', label: 'Vertex' },
+      { key: 'conic', label: 'Conic k', unit: '', hint: '0 sphere, −1 paraboloid', optionalNumber: true },
+      { key: 'coefficients', kind: 'list', label: 'Coefficients β1, β2, … (mm^(1−n))', hint: 'β1 multiplies r¹ (OpticStudio Odd Asphere order); at most 30' },
+    ],
+  },
+  zoned_asphere: {
+    label: 'Zoned asphere (concentric zones)',
+    fields: [
+      { key: 'zones', kind: 'json', rows: 12, label: 'Zones (JSON list, from the axis out)', hint: '[{"outer_radius_mm", "radius_mm" or "curvature_per_mm", "conic", "coefficients" [A4 …], "offset_mm"}]; the last zone may omit its outer radius' },
+    ],
+  },
   xy_polynomial: {
     label: 'XY polynomial',
     fields: [
@@ -41,6 +55,41 @@ export const SURFACES = {
       { key: 'base.conic', label: 'Base conic k', unit: '', optionalNumber: true },
       { key: 'norm_radius_mm', label: 'Normalisation radius N', unit: 'mm', hint: '> 0' },
       { key: 'coefficients_mm', kind: 'list', label: 'Coefficients c₁, c₂, … (mm)', hint: 'in index order of the convention; see crate/docs/zernike.md' },
+    ],
+  },
+  q_bfs: {
+    label: 'Q-bfs asphere (Forbes 2007)',
+    fields: [
+      { kind: 'radius', label: 'Best-fit sphere' },
+      { key: 'norm_radius_mm', label: 'Normalisation radius N', unit: 'mm', hint: '> 0' },
+      { key: 'coefficients_mm', kind: 'list', label: 'Coefficients a0, a1, … (mm)', hint: 'at most 31' },
+    ],
+  },
+  q_con: {
+    label: 'Q-con asphere (Forbes 2007)',
+    fields: [
+      { kind: 'radius', label: 'Vertex' },
+      { key: 'conic', label: 'Conic k', unit: '', optionalNumber: true },
+      { key: 'norm_radius_mm', label: 'Normalisation radius N', unit: 'mm', hint: '> 0' },
+      { key: 'coefficients_mm', kind: 'list', label: 'Coefficients a0, a1, … (mm)', hint: 'at most 31' },
+    ],
+  },
+  q_2d: {
+    label: 'Q-2D freeform (Forbes 2012)',
+    fields: [
+      { kind: 'radius', label: 'Best-fit sphere' },
+      { key: 'norm_radius_mm', label: 'Normalisation radius N', unit: 'mm', hint: '> 0' },
+      { key: 'terms', kind: 'json', rows: 8, label: 'Terms (JSON list)', hint: '[{"n", "m", "a_mm" (cos mθ), "b_mm" (sin mθ)}], n, m ≤ 30; m = 0: the Q-bfs part' },
+    ],
+  },
+  chebyshev: {
+    label: 'Chebyshev polynomial',
+    fields: [
+      { kind: 'radius', object: 'base', label: 'Base vertex' },
+      { key: 'base.conic', label: 'Base conic k', unit: '', optionalNumber: true },
+      { key: 'half_width_x_mm', label: 'Half-width X0', unit: 'mm', hint: '> 0; blank: the part radius', optionalNumber: true },
+      { key: 'half_width_y_mm', label: 'Half-width Y0', unit: 'mm', hint: '> 0; blank: the part radius', optionalNumber: true },
+      { key: 'terms', kind: 'json', rows: 8, label: 'Terms (JSON list)', hint: '[{"x": i, "y": j, "coefficient_mm": c}]: c·Ti(x/X0)·Tj(y/Y0), i, j ≤ 20' },
     ],
   },
   biconic: {
@@ -146,6 +195,13 @@ export const SURFACES = {
       { key: 'rbf_scale', label: 'RBF scale', unit: '× spacing', hint: '0.01 … 100, blank: 1', optionalNumber: true, when: { field: 'method', is: ['rbf'] } },
     ],
   },
+  grid_sag: {
+    label: 'Grid Sag (Zemax .DAT)',
+    fields: [
+      { key: 'data', kind: 'file', accept: '.dat,.DAT,.txt', label: 'Grid Sag file', hint: 'nx ny delx dely unitflag xdec ydec, then z dz/dx dz/dy d2z/dxdy [nodata] per point' },
+      { key: 'base', kind: 'json', rows: 2, label: 'Base asphere (JSON; null = plane)', hint: '{"radius_mm": R, "conic": k, "coefficients": [A4, …]}' },
+    ],
+  },
   composite: {
     label: 'Composite (base + terms)',
     fields: [
@@ -204,6 +260,23 @@ export const PRESETS = {
 const FAMILY_DEFAULTS = {
   lens_array: { lens_radius_mm: 2.84, aperture_mm: 1, pitch_mm: 1, grid: 'rectangular', form: 'concave' },
   asphere: { radius_mm: 40, conic: 0 },
+  odd_asphere: { radius_mm: 50, conic: -0.8, coefficients: [0, 0, 2e-5, -1.5e-6, 4e-8] },
+  q_bfs: { radius_mm: 40, norm_radius_mm: 5, coefficients_mm: [0.01, -0.002, 0.0008] },
+  q_con: { radius_mm: 40, conic: -1, norm_radius_mm: 5, coefficients_mm: [0.005, -0.0015, 0.0005] },
+  q_2d: {
+    radius_mm: 60, norm_radius_mm: 5,
+    terms: [{ n: 0, m: 0, a_mm: 0.003 }, { n: 0, m: 2, a_mm: 0.002 }, { n: 1, m: 1, a_mm: 0.0005, b_mm: -0.0003 }],
+  },
+  chebyshev: {
+    base: { radius_mm: 80 },
+    terms: [{ x: 2, y: 0, coefficient_mm: 0.002 }, { x: 0, y: 2, coefficient_mm: -0.0015 }, { x: 1, y: 2, coefficient_mm: 0.0008 }],
+  },
+  zoned_asphere: {
+    zones: [
+      { outer_radius_mm: 1, radius_mm: 40, conic: -1 },
+      { radius_mm: 45, conic: -1, offset_mm: 0.001388888888889 },
+    ],
+  },
   xy_polynomial: { base: { radius_mm: 80 }, norm_radius_mm: 5, terms: [{ x: 2, y: 1, coefficient_mm: 0.001 }] },
   sinusoid: { amplitude_mm: 0.002, wavelength_x_mm: 1, wavelength_y_mm: 1, phase_x_deg: 0, phase_y_deg: 0 },
   zernike: { convention: 'standard', base: { radius_mm: 100 }, norm_radius_mm: 5, coefficients_mm: [0, 0, 0, 0, 0.001, 0, 0.0005] },
@@ -229,6 +302,7 @@ const FAMILY_DEFAULTS = {
   },
   step_face: { file: {} },
   scattered: { data: {}, method: 'rbf' },
+  grid_sag: { data: {} },
   composite: {
     base: { type: 'asphere', radius_mm: 60 },
     terms: [{

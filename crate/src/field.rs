@@ -2,7 +2,6 @@
 //! allowed, used by every module that checks user input, so that the page can show the message
 //! beside the offending field and the command line can print it as is.
 
-use serde::de::{DeserializeOwned, Error as _};
 use thiserror::Error;
 
 /// A job field with a value that cannot be used.
@@ -190,92 +189,47 @@ pub fn in_range(field: &str, value: f64, lo: f64, hi: f64) -> Result<f64, FieldE
     }
 }
 
-/// An internally tagged object (`{"type": "asphere", …}`) split into its tag and the rest, for
-/// enums whose variants are deserialized by [`tagged_variant`]. serde's derived tagged enums
-/// buffer the content and lose the path of an error inside a variant (`surface` instead of
-/// `surface.phase_y_deg`); these two keep it.
-pub fn split_tag<'de, D: serde::Deserializer<'de>>(
-    de: D,
-    tag: &str,
-) -> Result<(String, serde_json::Value), D::Error> {
-    let value = serde_json::Value::deserialize(de)?;
-    let serde_json::Value::Object(mut map) = value else {
-        return Err(D::Error::custom(format!(
-            "must be an object with \"{tag}\", not {}",
-            json_kind(&value)
-        )));
-    };
-    match map.remove(tag) {
-        Some(serde_json::Value::String(t)) => Ok((t, serde_json::Value::Object(map))),
-        Some(other) => Err(D::Error::custom(format!(
-            "{tag}: must be a string, not {}",
-            json_kind(&other)
-        ))),
-        None => Err(D::Error::custom(format!("missing field `{tag}`"))),
-    }
+/// Marks a field path carried in front of a deserialisation message ([`nest_path`]): a control
+/// character that no message of serde or of this crate contains.
+const NESTED: char = '\u{1f}';
+
+/// The message of a deserialisation error seen at `path` inside a value that reads itself from a
+/// buffered copy (a surface spec, whose family is named by a key inside it): serde loses the path
+/// there, so the value's reader tracks it and puts it, marked, in front of the message, for the
+/// reader of the enclosing document to join to its own ([`join_path`]). A message that already
+/// carries a path (a surface inside a surface) gets the two joined.
+pub fn nest_path(path: &str, message: &str) -> String {
+    let (path, message) = join_path(path, message);
+    format!("{NESTED}{path}: {message}")
 }
 
-/// The content of a tagged variant, deserialized with the path of an error inside it kept at the
-/// front of the message (`base.radius_mm: invalid type …`), where [`join_path`] finds it.
-pub fn tagged_variant<T: DeserializeOwned, E: serde::de::Error>(
-    content: serde_json::Value,
-) -> Result<T, E> {
-    serde_path_to_error::deserialize(content).map_err(|e| {
-        let path = e.path().to_string();
-        E::custom(join_path(&path, &e.inner().to_string()))
-    })
-}
-
-use serde::Deserialize as _;
-
-/// `outer: message`, with a path that `message` starts with (`inner.path: …`, as
-/// [`tagged_variant`] writes it) joined to `outer` (`outer.inner.path: …`). A path is a run of
-/// identifiers and `[n]` indices joined by dots, directly followed by `": "`; serde's own
-/// messages never start that way.
+/// The full path and the message of a deserialisation error that the enclosing reader saw at
+/// `outer` (`.` or empty for the document itself): `outer` joined to the path the message carries
+/// ([`nest_path`]), if any, as `outer.inner` or `outer[i]…`.
 ///
 /// ```
-/// use spiralcam::field::join_path;
-/// assert_eq!(join_path("surface", "base.radius_mm: invalid type"), "surface.base.radius_mm: invalid type");
-/// assert_eq!(join_path("surface", "missing field `type`"), "surface: missing field `type`");
-/// assert_eq!(join_path(".", "invalid type: map"), "invalid type: map");
+/// use spiralcam::field::{join_path, nest_path};
+/// let inner = nest_path("base", "unknown field `type`");
+/// let outer = nest_path("terms[0].surface", &inner);
+/// assert_eq!(
+///     join_path("surface", &outer),
+///     ("surface.terms[0].surface.base".to_string(), "unknown field `type`".to_string())
+/// );
+/// assert_eq!(join_path(".", "missing field `name`"), (".".to_string(), "missing field `name`".to_string()));
 /// ```
-pub fn join_path(outer: &str, message: &str) -> String {
-    let outer = if outer == "." { "" } else { outer };
-    let inner = message.split_once(": ").filter(|(p, _)| is_path(p));
-    match (outer.is_empty(), inner) {
-        (true, _) => message.to_string(),
-        (false, Some((p, rest))) if p.starts_with('[') => format!("{outer}{p}: {rest}"),
-        (false, Some((p, rest))) => format!("{outer}.{p}: {rest}"),
-        (false, None) => format!("{outer}: {message}"),
-    }
-}
-
-/// Whether `s` is a field path such as `base.coefficients[2]`.
-fn is_path(s: &str) -> bool {
-    !s.is_empty()
-        && s.split('.').all(|part| {
-            let name = part.split('[').next().unwrap_or("");
-            let indices = &part[name.len()..];
-            (!name.is_empty() || indices.starts_with('['))
-                && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
-                && indices.split_inclusive(']').all(|i| {
-                    i.starts_with('[')
-                        && i.ends_with(']')
-                        && i[1..i.len() - 1].chars().all(|c| c.is_ascii_digit())
-                })
-        })
-}
-
-/// "an array", "a string", … for messages.
-fn json_kind(v: &serde_json::Value) -> &'static str {
-    match v {
-        serde_json::Value::Null => "null",
-        serde_json::Value::Bool(_) => "a boolean",
-        serde_json::Value::Number(_) => "a number",
-        serde_json::Value::String(_) => "a string",
-        serde_json::Value::Array(_) => "an array",
-        serde_json::Value::Object(_) => "an object",
-    }
+pub fn join_path(outer: &str, message: &str) -> (String, String) {
+    let Some((inner, rest)) = message
+        .strip_prefix(NESTED)
+        .and_then(|m| m.split_once(": "))
+    else {
+        return (outer.to_string(), message.to_string());
+    };
+    let path = match outer {
+        "" | "." => inner.to_string(),
+        _ if inner.starts_with('[') => format!("{outer}{inner}"),
+        _ => format!("{outer}.{inner}"),
+    };
+    (path, rest.to_string())
 }
 
 #[cfg(test)]

@@ -272,7 +272,7 @@ impl Report {
     pub fn new(tool_path: &ToolPath, stats: &Stats, nc_bytes: u64, reach: Reach) -> Self {
         let concave_zones = reach.zones;
         let job = tool_path.job();
-        let mut warnings = Vec::new();
+        let mut warnings = tool_path.surface().warnings();
         if let Some((rho, theta)) = stats.first_arc_end {
             let at = Location::new(rho, theta);
             warnings.push(format!(

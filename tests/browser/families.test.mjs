@@ -1,7 +1,8 @@
 // Every surface family through the page's form (WebGL2): choosing a family plans its defaults
-// without an error, the accuracy analysis shows its figures and maps, the data families plan
-// from files chosen in the page, the scattered form drops the RBF options when another
-// interpolator is chosen, and the progressive-lens preset shows its power maps.
+// without an error, the accuracy analysis shows its figures and maps, the data families (STEP,
+// Grid Sag, scattered points) plan from files chosen in the page, the scattered form drops the
+// RBF options when another interpolator is chosen, and the progressive-lens preset shows its
+// power maps.
 
 import { after, before, describe, test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -55,8 +56,9 @@ describe('surface families on the page', () => {
 
   test('every family without a data file plans its defaults', async () => {
     const families = await page.$$eval('[data-field="surface.type"] option', (os) => os.map((o) => o.value));
-    assert.ok(families.length >= 15, `only ${families.length} families`);
-    for (const family of families.filter((f) => f !== 'step_face' && f !== 'scattered')) {
+    assert.ok(families.length >= 22, `only ${families.length} families`);
+    const withFiles = ['step_face', 'scattered', 'grid_sag'];
+    for (const family of families.filter((f) => !withFiles.includes(f))) {
       await replan(page, () => page.selectOption('[data-field="surface.type"]', family));
       const report = await page.evaluate(() => window.spiralcam.report);
       assert.ok(report.points > 1000, `${family}: ${report.points} points`);
@@ -104,6 +106,14 @@ describe('surface families on the page', () => {
     await replan(page, () => page.setInputFiles('[data-field="surface.file"]', join(ROOT, 'crate/jobs/step-face-sphere.step')));
     const report = await page.evaluate(() => window.spiralcam.report);
     assert.match(report.surface, /STEP|NURBS|B-spline/i);
+  });
+
+  test('a Grid Sag file chosen in the page plans', async () => {
+    await page.selectOption('[data-field="surface.type"]', 'grid_sag');
+    await replan(page, () => page.setInputFiles('[data-field="surface.data"]', join(ROOT, 'crate/jobs/grid-sag.dat')));
+    const report = await page.evaluate(() => window.spiralcam.report);
+    assert.match(report.surface, /^grid sag \(Zemax DAT\) from inline data: 33 × 33 points/);
+    assert.equal((await currentJob()).surface.type, 'grid_sag');
   });
 
   test('scattered points chosen in the page regenerate the sphere they sample', async () => {

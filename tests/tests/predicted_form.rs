@@ -336,7 +336,8 @@ fn small_job() -> impl Strategy<Value = (String, usize)> {
                 // A nose larger than the part is refused (tool.nose_radius_mm).
                 let r = r.min(2.0 * part);
                 let w = r * (beta / 2.0).to_radians().sin();
-                let f = (2.0 * w * feed_ratio).max(part / 40.0).min(1.9 * w);
+                // A feed at most the part radius (strategy.feed_mm_per_rev).
+                let f = (2.0 * w * feed_ratio).max(part / 40.0).min(1.9 * w).min(part);
                 let dir = if cw { "cw" } else { "ccw" };
                 (
                     format!(

@@ -66,9 +66,10 @@ fn constant_angle_case() -> impl Strategy<Value = (f64, f64, u32, Direction, f64
         direction(),
         -720.0..720.0f64,
     )
-        .prop_filter("at most 200 000 points", |(r, f, n, _, _)| {
-            *n as f64 * r / f < 2e5
-        })
+        .prop_filter(
+            "at most 200 000 points, a feed at most the radius",
+            |(r, f, n, _, _)| *n as f64 * r / f < 2e5 && f <= r,
+        )
 }
 
 proptest! {

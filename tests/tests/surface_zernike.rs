@@ -18,7 +18,8 @@
 mod common;
 
 use common::{
-    check_derivatives, check_example_jobs, check_planned_path, config, field_error, local,
+    check_derivatives, check_example_jobs, check_planned_path, config, field_error, gauss_legendre,
+    local, small_job,
 };
 use proptest::prelude::*;
 use spiralcam::surface::zernike::Convention;
@@ -326,33 +327,6 @@ fn every_term_matches_the_recurrence() {
             }
         }
     }
-}
-
-/// Nodes and weights of Gauss–Legendre quadrature on [0, 1] with `k` nodes: Newton's method on
-/// Pₖ from the three-term recurrence, weights `2/((1 − x²)·Pₖ′(x)²)` halved for [0, 1].
-fn gauss_legendre(k: usize) -> Vec<(f64, f64)> {
-    (0..k)
-        .map(|i| {
-            let mut x = (PI * (i as f64 + 0.75) / (k as f64 + 0.5)).cos();
-            let mut dp = 0.0;
-            for _ in 0..100 {
-                let (mut p0, mut p1) = (1.0, x);
-                for n in 2..=k {
-                    let p2 = ((2 * n - 1) as f64 * x * p1 - (n - 1) as f64 * p0) / n as f64;
-                    p0 = p1;
-                    p1 = p2;
-                }
-                dp = k as f64 * (x * p1 - p0) / (x * x - 1.0);
-                let step = p1 / dp;
-                x -= step;
-                if step.abs() < 1e-16 {
-                    break;
-                }
-            }
-            let w = 2.0 / ((1.0 - x * x) * dp * dp);
-            ((x + 1.0) / 2.0, w / 2.0)
-        })
-        .collect()
 }
 
 /// The quadrature nodes (x, y) on the unit disc and weights w with `Σ w·f ≈ ∫ f dA / π`.
@@ -748,28 +722,19 @@ fn the_documentation_tables_match_the_definitions() {
     assert_eq!(counts[1], 37);
 }
 
-/// A small job: Ø`diameter` mm part, nose r 0.1 mm, 0.15 mm feed, 24 points per revolution.
-fn job(name: &str, surface: &str, diameter: f64) -> String {
-    format!(
-        r#"{{"name":"{name}","part":{{"diameter_mm":{diameter}}},"surface":{surface},
-            "tool":{{"nose_radius_mm":0.1,"included_angle_deg":100}},"machine":{{"spindle_rpm":300}},
-            "strategy":{{"feed_mm_per_rev":0.15,"sampling":{{"type":"constant_angle","points_per_rev":24}}}}}}"#
-    )
-}
-
 #[test]
 fn planned_paths_touch_without_cutting() {
     // Few-µm astigmatism, coma, trefoil and spherical terms on a sphere and on a plane: slopes
     // below 0.1 and curvatures below 0.1 mm⁻¹ keep the sampling bound of 2000 nose-angle steps
     // (K·Δa²/8 with K ≤ 0.13 mm, Δa = 1.75/2000) near 0.012 nm, under the 0.02 nm asserted.
     let none = |_: f64, _: f64| Vec::new();
-    let standard = job(
+    let standard = small_job(
         "zernike-standard",
         r#"{"type":"zernike","convention":"standard","base":{"radius_mm":-30},"norm_radius_mm":1.5,
             "coefficients_mm":[0,0,0,0,0.002,-0.003,0.0015,0,0.002,0,0.001]}"#,
         3.0,
     );
-    let fringe = job(
+    let fringe = small_job(
         "zernike-fringe",
         r#"{"type":"zernike","convention":"fringe","base":{"curvature_per_mm":0},"norm_radius_mm":1.5,
             "coefficients_mm":[0,0.001,0,0,0.003,0,0,-0.002,0,0.002,0,0,0,0,0,0.0005]}"#,

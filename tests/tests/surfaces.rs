@@ -784,3 +784,23 @@ fn bad_parameters_name_their_field() {
     .unwrap_err();
     assert!(e.to_string().contains("wavelenght"), "{e}");
 }
+
+#[test]
+fn every_example_job_reads_back_what_it_writes() {
+    // The surface's "type" is written by serde's tag and read by hand (family_tag): every
+    // family's name must agree, and every field survive, for each example job.
+    let dir = format!("{}/../crate/jobs", env!("CARGO_MANIFEST_DIR"));
+    let mut files: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{dir}: {e}"))
+        .filter_map(|e| e.ok()?.file_name().into_string().ok())
+        .filter(|n| n.ends_with(".json"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 25, "{files:?}");
+    for file in files {
+        let job = common::example_job(&file);
+        let again = spiralcam::job::Job::from_json(&job.to_json())
+            .unwrap_or_else(|e| panic!("{file}: {e}"));
+        assert_eq!(again, job, "{file}");
+    }
+}

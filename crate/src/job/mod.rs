@@ -99,9 +99,7 @@ impl Job {
     pub fn from_json(text: &str) -> Result<Self, JobError> {
         let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         let de = &mut serde_json::Deserializer::from_str(text);
-        serde_path_to_error::deserialize::<_, UniqueKeys>(de).map_err(|e| {
-            JobError::Syntax(join_path(&e.path().to_string(), &e.inner().to_string()))
-        })?;
+        serde_path_to_error::deserialize::<_, UniqueKeys>(de).map_err(syntax)?;
         let value: serde_json::Value =
             serde_json::from_str(text).map_err(|e| JobError::Syntax(e.to_string()))?;
         Self::from_value(value)
@@ -140,8 +138,7 @@ impl Job {
                 "must be a JSON object {{…}}, not {kind}"
             )));
         }
-        serde_path_to_error::deserialize(value)
-            .map_err(|e| JobError::Syntax(join_path(&e.path().to_string(), &e.inner().to_string())))
+        serde_path_to_error::deserialize(value).map_err(syntax)
     }
 
     /// The page's default job: paper 004's lens array.
@@ -310,6 +307,16 @@ impl Job {
     }
 }
 
+/// A job that cannot be read, named by the path of the offending field (a path carried inside
+/// a surface's message joined on: [`join_path`]).
+fn syntax<E: std::fmt::Display>(e: serde_path_to_error::Error<E>) -> JobError {
+    let (path, message) = join_path(&e.path().to_string(), &e.inner().to_string());
+    match path.as_str() {
+        "." | "" => JobError::Syntax(message),
+        _ => JobError::Syntax(format!("{path}: {message}")),
+    }
+}
+
 /// Any JSON value whose objects have no key twice: a first pass over a job's text, since a
 /// [`serde_json::Value`] keeps the last of two equal keys without a word.
 struct UniqueKeys;
@@ -371,6 +378,76 @@ impl<'de> serde::de::Visitor<'de> for UniqueKeys {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use serde_json::Value;
+
+    /// The job error for a surface, in a job that is otherwise the default.
+    fn job_error(surface: &str) -> String {
+        let mut job: Value = serde_json::from_str(&Job::default_job().to_json()).unwrap();
+        job["surface"] = serde_json::from_str(surface).unwrap();
+        Job::from_json(&job.to_string()).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn errors_inside_a_surface_name_their_full_path() {
+        // An asphere base or parent is an asphere spec without a "type".
+        let e = job_error(
+            r#"{"type":"xy_polynomial","base":{"type":"asphere","radius_mm":80},"norm_radius_mm":6,"terms":[]}"#,
+        );
+        assert!(
+            e.starts_with("job: surface.base.type: unknown field `type`"),
+            "{e}"
+        );
+        let e = job_error(
+            r#"{"type":"off_axis_conic","parent":{"type":"asphere","radius_mm":80},"off_axis_distance_mm":5}"#,
+        );
+        assert!(
+            e.starts_with("job: surface.parent.type: unknown field `type`"),
+            "{e}"
+        );
+        // Inside a list, and a surface inside a composite's term.
+        let e = job_error(
+            r#"{"type":"xy_polynomial","base":{"radius_mm":80},"norm_radius_mm":6,"terms":[{"x":1,"y":0,"coefficient_mm":"a"}]}"#,
+        );
+        assert!(
+            e.starts_with("job: surface.terms[0].coefficient_mm: invalid type"),
+            "{e}"
+        );
+        let e = job_error(
+            r#"{"type":"composite","base":{"type":"asphere","radius_mm":50},"terms":[{"surface":
+                {"type":"zernike","convention":"fringe","base":{"type":"asphere"},"norm_radius_mm":2,"coefficients_mm":[]}}]}"#,
+        );
+        assert!(
+            e.starts_with("job: surface.terms[0].surface.base.type: unknown field `type`"),
+            "{e}"
+        );
+        // The same with "type" not first (the object is buffered).
+        let e = job_error(
+            r#"{"base":{"radius_mm":80,"type":"asphere"},"type":"xy_polynomial","norm_radius_mm":6,"terms":[]}"#,
+        );
+        assert!(
+            e.starts_with("job: surface.base.type: unknown field `type`"),
+            "{e}"
+        );
+        let e = job_error(
+            r#"{"terms":[{"surface":{"base":{"type":"asphere"},"type":"zernike","convention":"fringe","norm_radius_mm":2,"coefficients_mm":[]}}],
+                "type":"composite","base":{"type":"asphere","radius_mm":50}}"#,
+        );
+        assert!(
+            e.starts_with("job: surface.terms[0].surface.base.type: unknown field `type`"),
+            "{e}"
+        );
+        // The surface's own fields and family.
+        let e = job_error(r#"{"type":"asphere","radius_mm":80,"colour":"red"}"#);
+        assert!(
+            e.starts_with("job: surface.colour: unknown field `colour`"),
+            "{e}"
+        );
+        let e = job_error(r#"{"type":"torus"}"#);
+        assert!(
+            e.starts_with("job: surface: unknown variant `torus`"),
+            "{e}"
+        );
+    }
 
     #[test]
     fn default_job_round_trips_and_validates() {

@@ -113,7 +113,7 @@ impl Asphere {
     }
 
     /// z, z_s and z_ss as functions of s = r², or the reason there is none.
-    fn in_s(&self, s: f64) -> Result<[f64; 3], String> {
+    pub(crate) fn in_s(&self, s: f64) -> Result<[f64; 3], String> {
         let (c, k) = (self.c, self.k);
         let q = 1.0 - (1.0 + k) * c * c * s;
         if q <= 0.0 {
@@ -140,37 +140,13 @@ impl Asphere {
         Ok([z, zs, zss])
     }
 
-    fn undefined(&self, x: f64, y: f64, reason: String) -> UndefinedError {
-        UndefinedError {
-            surface: "even asphere",
-            x_mm: x,
-            y_mm: y,
-            radius_mm: x.hypot(y),
-            reason,
-        }
-    }
-}
-
-impl Surface for Asphere {
-    fn local(&self, x: f64, y: f64) -> Result<Local, UndefinedError> {
-        let [z, zs, zss] = self
-            .in_s(x * x + y * y)
-            .map_err(|r| self.undefined(x, y, r))?;
-        Ok(Local {
-            z,
-            zx: 2.0 * x * zs,
-            zy: 2.0 * y * zs,
-            zxx: 2.0 * zs + 4.0 * x * x * zss,
-            zxy: 4.0 * x * y * zss,
-            zyy: 2.0 * zs + 4.0 * y * y * zss,
-        })
+    /// The curvature c, 1/mm.
+    pub fn curvature_per_mm(&self) -> f64 {
+        self.c
     }
 
-    fn feature_length_mm(&self) -> f64 {
-        f64::INFINITY
-    }
-
-    fn describe(&self) -> String {
+    /// The definition without the family's name: `R 40 mm, k -1.2, A4 1.5e-6` (`plane, k 0`).
+    pub fn shape(&self) -> String {
         let r = if self.c == 0.0 {
             "plane".to_string()
         } else {
@@ -183,11 +159,61 @@ impl Surface for Asphere {
             .map(|(i, a)| format!("A{} {a:e}", 2 * i + 4))
             .collect();
         format!(
-            "even asphere {r}, k {}{}{}",
+            "{r}, k {}{}{}",
             self.k,
             if terms.is_empty() { "" } else { ", " },
             terms.join(", ")
         )
+    }
+
+    /// Whether the surface is the plane z = 0 (no curvature, no terms).
+    pub fn is_plane(&self) -> bool {
+        self.c == 0.0 && self.a.iter().all(|&a| a == 0.0)
+    }
+}
+
+/// The local values at (x, y) of a surface of revolution given as z(s), s = r², by
+/// `[z, dz/ds, d²z/ds²]`: `∂z/∂x = 2x·z_s`, `∂²z/∂x² = 2z_s + 4x²·z_ss`, `∂²z/∂x∂y = 4xy·z_ss`.
+pub(crate) fn radial_local(x: f64, y: f64, [z, zs, zss]: [f64; 3]) -> Local {
+    Local {
+        z,
+        zx: 2.0 * x * zs,
+        zy: 2.0 * y * zs,
+        zxx: 2.0 * zs + 4.0 * x * x * zss,
+        zxy: 4.0 * x * y * zss,
+        zyy: 2.0 * zs + 4.0 * y * y * zss,
+    }
+}
+
+/// [`radial_local`] of a surface of revolution whose `z(s)` is `z`, or the surface named
+/// `surface` undefined at (x, y) for the reason `z` gives.
+pub(crate) fn radial_at(
+    surface: &'static str,
+    x: f64,
+    y: f64,
+    z: Result<[f64; 3], String>,
+) -> Result<Local, UndefinedError> {
+    z.map(|z| radial_local(x, y, z))
+        .map_err(|reason| UndefinedError {
+            surface,
+            x_mm: x,
+            y_mm: y,
+            radius_mm: x.hypot(y),
+            reason,
+        })
+}
+
+impl Surface for Asphere {
+    fn local(&self, x: f64, y: f64) -> Result<Local, UndefinedError> {
+        radial_at("even asphere", x, y, self.in_s(x * x + y * y))
+    }
+
+    fn feature_length_mm(&self) -> f64 {
+        f64::INFINITY
+    }
+
+    fn describe(&self) -> String {
+        format!("even asphere {}", self.shape())
     }
 }
 

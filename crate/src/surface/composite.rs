@@ -107,6 +107,10 @@ impl Surface for Placed {
         self.inner.slope_kinks(Line { x0, y0, c, s }, t0, t1, out);
     }
 
+    fn warnings(&self) -> Vec<String> {
+        self.inner.warnings()
+    }
+
     fn describe(&self) -> String {
         let moved = self.dx != 0.0 || self.dy != 0.0 || self.rotation_deg != 0.0;
         if moved {
@@ -192,6 +196,10 @@ impl Surface for Composite {
         for p in &self.parts {
             p.slope_kinks(line, t0, t1, out);
         }
+    }
+
+    fn warnings(&self) -> Vec<String> {
+        self.parts.iter().flat_map(|p| p.warnings()).collect()
     }
 
     fn describe(&self) -> String {

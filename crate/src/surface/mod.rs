@@ -11,13 +11,17 @@
 //! [`DataFile`]. A new surface type goes here: a file, a [`SurfaceSpec`] variant, derivative
 //! tests against finite differences.
 //!
-//! The families: even asphere ([`asphere`]), XY polynomial ([`xy_polynomial`]), Zernike
-//! ([`zernike`]), biconic ([`biconic`]), toroid ([`toroid`]), off-axis conic
-//! ([`off_axis_conic`]), tilted flat ([`tilted_flat`]), lens array ([`lens_array`], paper 004),
-//! sinusoid ([`sinusoid`]), compound eye ([`compound_eye`], papers 000/001), progressive lens
-//! ([`pal`], paper 003), NURBS ([`nurbs`]) and STEP faces ([`step_face`]), scattered data
-//! ([`scattered`], paper 004's RBF), and any base with decentred terms ([`composite`]);
-//! [`reframed`] sees any of them along its normal at a point.
+//! The families: even asphere ([`asphere`]), odd asphere ([`odd_asphere`]), zoned asphere
+//! ([`zoned_asphere`]), XY polynomial ([`xy_polynomial`]), Zernike ([`zernike`]), Forbes'
+//! Q-types ([`q_bfs`], [`q_con`], [`q_2d`], on [`q_polynomials`]), Chebyshev ([`chebyshev`]),
+//! biconic ([`biconic`]), toroid ([`toroid`]), off-axis conic ([`off_axis_conic`]), tilted flat
+//! ([`tilted_flat`]), lens array ([`lens_array`], paper 004), sinusoid ([`sinusoid`]), compound
+//! eye ([`compound_eye`], papers 000/001), progressive lens ([`pal`], paper 003), NURBS
+//! ([`nurbs`]) and STEP faces ([`step_face`]), scattered data ([`scattered`], paper 004's
+//! RBF), Zemax Grid Sag data ([`grid_sag`], with its `.DAT` reader and writer and the export of
+//! any surface to a grid), and any base with decentred terms ([`composite`]); [`reframed`] sees
+//! any of them along its normal at a point. A spec is read from its `"type"` by
+//! [`family_tag`].
 //!
 //! Measured data: [`measured`] reads what metrology hands back after a cut (CSV point clouds,
 //! Zygo `.datx` and MetroPro `.dat` maps) into one map of heights in millimetres, oriented into
@@ -26,16 +30,24 @@
 pub mod asphere;
 pub mod biconic;
 pub(crate) mod cell_grid;
+pub mod chebyshev;
 pub mod composite;
 pub mod compound_eye;
 pub mod data_file;
+pub mod family_tag;
+pub mod grid_sag;
 pub mod jet;
 pub mod lens_array;
 pub mod measured;
 pub mod nurbs;
+pub mod odd_asphere;
 pub mod off_axis_conic;
 pub mod pal;
 pub mod polynomial;
+pub mod q_2d;
+pub mod q_bfs;
+pub mod q_con;
+pub mod q_polynomials;
 pub mod reframed;
 pub mod scattered;
 pub mod sinusoid;
@@ -44,20 +56,27 @@ pub mod tilted_flat;
 pub mod toroid;
 pub mod xy_polynomial;
 pub mod zernike;
+pub mod zoned_asphere;
 
-use crate::field::{FieldError, split_tag, tagged_variant};
-use serde::{Deserialize, Serialize};
+use crate::field::FieldError;
+use serde::Serialize;
 use thiserror::Error;
 
 pub use asphere::{Asphere, AsphereSpec};
 pub use biconic::{Biconic, BiconicSpec};
+pub use chebyshev::{Chebyshev, ChebyshevSpec};
 pub use composite::{Composite, CompositeSpec, Placed, TermSpec};
 pub use compound_eye::{CompoundEye, CompoundEyeSpec};
 pub use data_file::DataFile;
+pub use grid_sag::{GridSag, GridSagSpec};
 pub use lens_array::{LensArray, LensArraySpec};
 pub use nurbs::{Nurbs, NurbsSpec};
+pub use odd_asphere::{OddAsphere, OddAsphereSpec};
 pub use off_axis_conic::{OffAxisConic, OffAxisConicSpec};
 pub use pal::{Pal, PalSpec};
+pub use q_2d::{Q2d, Q2dSpec};
+pub use q_bfs::{QBfs, QBfsSpec};
+pub use q_con::{QCon, QConSpec};
 pub use reframed::Reframed;
 pub use scattered::{Scattered, ScatteredSpec};
 pub use sinusoid::{Sinusoid, SinusoidSpec};
@@ -66,6 +85,7 @@ pub use tilted_flat::{TiltedFlat, TiltedFlatSpec};
 pub use toroid::{Toroid, ToroidSpec};
 pub use xy_polynomial::{XyPolynomial, XyPolynomialSpec};
 pub use zernike::{Zernike, ZernikeSpec};
+pub use zoned_asphere::{ZonedAsphere, ZonedAsphereSpec};
 
 /// Sag and its first and second derivatives at one point (mm, mm/mm, 1/mm).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -254,11 +274,17 @@ pub trait Surface: Send + Sync + std::fmt::Debug {
 
     /// One line restating the definition, for NC headers and reports.
     fn describe(&self) -> String;
+
+    /// Findings about the definition that the operator must read before cutting (a zone
+    /// boundary whose slope jumps, a polynomial extrapolated beyond its normalisation); the
+    /// plan's report lists them with its own warnings. None by default.
+    fn warnings(&self) -> Vec<String> {
+        Vec::new()
+    }
 }
 
-/// The surface of a job, one of the families (JSON: an object with `"type"` naming the family,
-/// one of [`SURFACE_TYPES`]). An error inside a family's fields names its path
-/// (`surface.base.radius_mm`), which serde's derived tagged enums do not.
+/// The surface of a job, one of the families (JSON: an object with `"type"` naming the family;
+/// read by [`family_tag`], which keeps the path of an error inside it).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "type", rename_all = "snake_case")]
 pub enum SurfaceSpec {
@@ -292,50 +318,21 @@ pub enum SurfaceSpec {
     Scattered(ScatteredSpec),
     /// A base plus decentred and rotated terms.
     Composite(CompositeSpec),
-}
-
-/// The values of a surface's `"type"`, one per [`SurfaceSpec`] variant.
-pub const SURFACE_TYPES: &[&str] = &[
-    "asphere",
-    "xy_polynomial",
-    "lens_array",
-    "sinusoid",
-    "zernike",
-    "biconic",
-    "toroid",
-    "off_axis_conic",
-    "tilted_flat",
-    "compound_eye",
-    "pal",
-    "nurbs",
-    "step_face",
-    "scattered",
-    "composite",
-];
-
-impl<'de> Deserialize<'de> for SurfaceSpec {
-    fn deserialize<D: serde::Deserializer<'de>>(de: D) -> Result<Self, D::Error> {
-        use serde::de::Error;
-        let (tag, c) = split_tag(de, "type")?;
-        Ok(match tag.as_str() {
-            "asphere" => SurfaceSpec::Asphere(tagged_variant(c)?),
-            "xy_polynomial" => SurfaceSpec::XyPolynomial(tagged_variant(c)?),
-            "lens_array" => SurfaceSpec::LensArray(tagged_variant(c)?),
-            "sinusoid" => SurfaceSpec::Sinusoid(tagged_variant(c)?),
-            "zernike" => SurfaceSpec::Zernike(tagged_variant(c)?),
-            "biconic" => SurfaceSpec::Biconic(tagged_variant(c)?),
-            "toroid" => SurfaceSpec::Toroid(tagged_variant(c)?),
-            "off_axis_conic" => SurfaceSpec::OffAxisConic(tagged_variant(c)?),
-            "tilted_flat" => SurfaceSpec::TiltedFlat(tagged_variant(c)?),
-            "compound_eye" => SurfaceSpec::CompoundEye(tagged_variant(c)?),
-            "pal" => SurfaceSpec::Pal(tagged_variant(c)?),
-            "nurbs" => SurfaceSpec::Nurbs(tagged_variant(c)?),
-            "step_face" => SurfaceSpec::StepFace(tagged_variant(c)?),
-            "scattered" => SurfaceSpec::Scattered(tagged_variant(c)?),
-            "composite" => SurfaceSpec::Composite(tagged_variant(c)?),
-            other => return Err(D::Error::unknown_variant(other, SURFACE_TYPES)),
-        })
-    }
+    /// Odd asphere: conic plus β1·r + β2·r² + … (OpticStudio "Odd Asphere").
+    OddAsphere(OddAsphereSpec),
+    /// Forbes' Qbfs asphere (best-fit sphere plus normal departure, 2007).
+    QBfs(QBfsSpec),
+    /// Forbes' Qcon asphere (conic plus sag departure, 2007).
+    QCon(QConSpec),
+    /// Forbes' Q₂D freeform polynomials on a best-fit sphere (2012).
+    #[serde(rename = "q_2d")]
+    Q2d(Q2dSpec),
+    /// Chebyshev polynomials Tᵢ(x/X₀)·Tⱼ(y/Y₀) on a conic base.
+    Chebyshev(ChebyshevSpec),
+    /// Concentric zones, each its own even asphere.
+    ZonedAsphere(ZonedAsphereSpec),
+    /// Zemax Grid Sag: a `.DAT` grid of sags on a base asphere, bicubic between points.
+    GridSag(GridSagSpec),
 }
 
 impl SurfaceSpec {
@@ -364,15 +361,23 @@ impl SurfaceSpec {
             SurfaceSpec::StepFace(s) => Box::new(StepFace::new(s, part)?),
             SurfaceSpec::Scattered(s) => Box::new(Scattered::new(s, part)?),
             SurfaceSpec::Composite(s) => Box::new(Composite::new(s, part)?),
+            SurfaceSpec::OddAsphere(s) => Box::new(OddAsphere::new(s)?),
+            SurfaceSpec::QBfs(s) => Box::new(QBfs::new(s)?),
+            SurfaceSpec::QCon(s) => Box::new(QCon::new(s)?),
+            SurfaceSpec::Q2d(s) => Box::new(Q2d::new(s)?),
+            SurfaceSpec::Chebyshev(s) => Box::new(Chebyshev::new(s, part)?),
+            SurfaceSpec::ZonedAsphere(s) => Box::new(ZonedAsphere::new(s)?),
+            SurfaceSpec::GridSag(s) => Box::new(GridSag::new(s)?),
         })
     }
 
-    /// The data files the surface refers to (scattered points, STEP files), in composites too,
+    /// The data files the surface refers to (scattered points, STEP files, Grid Sag DATs), in composites too,
     /// each with its field path relative to the surface (`data`, `terms[1].surface.file`).
     pub fn data_files_mut(&mut self) -> Vec<(String, &mut DataFile)> {
         match self {
             SurfaceSpec::StepFace(s) => vec![("file".into(), &mut s.file)],
             SurfaceSpec::Scattered(s) => vec![("data".into(), &mut s.data)],
+            SurfaceSpec::GridSag(s) => vec![("data".into(), &mut s.data)],
             SurfaceSpec::Composite(c) => {
                 let mut files = Vec::new();
                 for (f, d) in c.base.data_files_mut() {

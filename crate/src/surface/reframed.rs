@@ -289,6 +289,10 @@ impl Surface for Reframed {
         }
     }
 
+    fn warnings(&self) -> Vec<String> {
+        self.inner.warnings()
+    }
+
     fn describe(&self) -> String {
         format!(
             "{}, on a spindle axis along its normal at ({}, {}) mm (z {:.6} mm): tilted {:.6}° \

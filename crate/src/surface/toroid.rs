@@ -143,16 +143,18 @@ impl Surface for Toroid {
     }
 
     fn describe(&self) -> String {
-        let rotation = if self.cx == 0.0 {
-            "none (cylinder)".to_string()
+        let sweep = if self.cx == 0.0 {
+            "extruded along X (a cylinder with its axis parallel to X)".to_string()
         } else {
-            format!("{} mm", 1.0 / self.cx)
+            format!(
+                "swept about an axis parallel to Y at radius {} mm",
+                1.0 / self.cx
+            )
         };
         format!(
-            "toroid: YZ profile {}, ky {}, swept about an axis parallel to Y at radius {}",
+            "toroid: YZ profile {}, ky {}, {sweep}",
             describe_radius(self.cy),
             self.ky,
-            rotation
         )
     }
 }

@@ -14,7 +14,7 @@
 //!   (J. C. Wyant and K. Creath, "Basic wavefront aberration theory for optical metrology",
 //!   Applied Optics and Optical Engineering XI, 1992, the 37-term list): grouped by
 //!   g = (n + m)/2, within a group m falls from g to 0 (n = 2g − m), cos before sin; term 37 is
-//!   R₁₂⁰. Not normalised: every radial polynomial is 1 at ρ = 1. Exactly 37 terms (beyond 37 the
+//!   R₁₂⁰. Not normalised: every radial polynomial is 1 at ρ = 1. Up to 37 terms (beyond 37 the
 //!   ordering is not standardised).
 //!
 //! The radial polynomial is Zernike's finite sum

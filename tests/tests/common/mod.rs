@@ -590,3 +590,40 @@ pub fn split_program(job: &Job, slide: impl Fn(&PathPoint) -> f64) -> (Vec<PathP
     writer.finish().unwrap();
     (pts, String::from_utf8(nc).unwrap())
 }
+
+/// Nodes and weights of Gauss–Legendre quadrature on [0, 1] with `k` nodes: Newton's method on
+/// Pₖ from the three-term recurrence, weights `2/((1 − x²)·Pₖ′(x)²)` halved for [0, 1].
+pub fn gauss_legendre(k: usize) -> Vec<(f64, f64)> {
+    (0..k)
+        .map(|i| {
+            let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (k as f64 + 0.5)).cos();
+            let mut dp = 0.0;
+            for _ in 0..100 {
+                let (mut p0, mut p1) = (1.0, x);
+                for n in 2..=k {
+                    let p2 = ((2 * n - 1) as f64 * x * p1 - (n - 1) as f64 * p0) / n as f64;
+                    p0 = p1;
+                    p1 = p2;
+                }
+                dp = k as f64 * (x * p1 - p0) / (x * x - 1.0);
+                let step = p1 / dp;
+                x -= step;
+                if step.abs() < 1e-16 {
+                    break;
+                }
+            }
+            let w = 2.0 / ((1.0 - x * x) * dp * dp);
+            ((x + 1.0) / 2.0, w / 2.0)
+        })
+        .collect()
+}
+
+/// A small job for the gouge checks: a Ø`diameter_mm` part, nose r 0.1 mm and 100°, 0.15 mm
+/// feed, 24 points per revolution at 300 rpm.
+pub fn small_job(name: &str, surface: &str, diameter_mm: f64) -> String {
+    format!(
+        r#"{{"name":"{name}","part":{{"diameter_mm":{diameter_mm}}},"surface":{surface},
+            "tool":{{"nose_radius_mm":0.1,"included_angle_deg":100}},"machine":{{"spindle_rpm":300}},
+            "strategy":{{"feed_mm_per_rev":0.15,"sampling":{{"type":"constant_angle","points_per_rev":24}}}}}}"#
+    )
+}

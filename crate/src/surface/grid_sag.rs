@@ -1,0 +1,308 @@
+//! Zemax Grid Sag: a rectangular grid of sag data from a `.DAT` file ([`dat`]) added to a base
+//! asphere, `z(x, y) = base(x, y) + g(x − x_dec, y − y_dec)`, as OpticStudio's "Grid Sag" surface
+//! defines it (OpticStudio User Guide, "Grid Sag"), with g the bicubic interpolation of the grid
+//! (OpticStudio's default, "bicubic spline"; its linear option is not offered, it is not C¹).
+//!
+//! **Interpolation.** Each cell is the bicubic Hermite patch of its four corners' sags, slopes
+//! and cross derivatives (module `bicubic`), its 16 coefficients computed when the surface is built,
+//! so an evaluation is a cell lookup and two cubic polynomials: C¹ everywhere, the designer's
+//! derivatives honoured at every grid point. When the file's derivatives are all zero they are
+//! computed: the slopes of the not-a-knot cubic splines through each row and column and, for the
+//! cross derivative, the column splines of the row slopes (module `spline`), which makes g the
+//! tensor-product cubic spline of the sags (C², exact for bicubic polynomials). OpticStudio does
+//! not document how it computes missing derivatives, so on such a file its sag may differ from
+//! this one by up to the interpolation error (measured in `tests/tests/surface_grid_sag.rs`).
+//!
+//! **Domain.** The grid's rectangle (to 1e-9 of a cell); a point outside, or in a cell with a
+//! corner without data, is undefined, an error naming the point, the grid point and its line in
+//! the file (OpticStudio would use the base alone there; a made-up sag is never cut). The grid
+//! must therefore cover the part and the path's first point, which may lie one angle step
+//! outside it.
+//!
+//! **Planner.** No slope kinks (C¹); the feature length is twice the smaller spacing (the
+//! shortest wave the data can hold), as for scattered data on a grid.
+
+pub mod dat;
+pub mod export;
+
+mod bicubic;
+mod spline;
+
+use super::{Asphere, AsphereSpec, DataFile, Local, Surface, UndefinedError};
+use crate::field::FieldError;
+use dat::GridData;
+use serde::{Deserialize, Serialize};
+
+/// Tolerance on the grid's edges, in cells.
+const EDGE: f64 = 1e-9;
+
+/// Job entry of a Grid Sag surface.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GridSagSpec {
+    /// The `.DAT` file, as `{"path": …}` (command line) or `{"text": …}`.
+    pub data: DataFile,
+    /// The base surface the grid is added to; default the plane z = 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub base: Option<AsphereSpec>,
+}
+
+/// Where the grid's derivatives came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Derivatives {
+    /// The file's.
+    File,
+    /// Computed by splines (the file's were all zero).
+    Computed,
+}
+
+/// A Grid Sag surface, validated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GridSag {
+    base: Asphere,
+    flat_base: bool,
+    name: String,
+    /// The grid as read (the nodes' derivatives are the file's).
+    grid: GridData,
+    derivatives: Derivatives,
+    /// Position of the first point (i = j = 0), mm.
+    x0: f64,
+    y0: f64,
+    /// Coefficients per cell, `cells[j·(nx − 1) + i]`.
+    cells: Vec<[f64; 16]>,
+    /// Whether each cell has data at its four corners.
+    cell_valid: Vec<bool>,
+    missing: usize,
+}
+
+/// The derivatives at every node in mm units: `[z_x, z_y, z_xy]`, from the file or computed.
+fn node_derivatives(g: &GridData) -> (Vec<[f64; 3]>, Derivatives) {
+    if g.has_derivatives() {
+        let d = g
+            .nodes
+            .iter()
+            .map(|n| [n.dz_dx, n.dz_dy, n.d2z_dxdy_per_mm])
+            .collect();
+        return (d, Derivatives::File);
+    }
+    let (nx, ny) = (g.nx, g.ny);
+    let mut d = vec![[0.0; 3]; nx * ny];
+    let mut z = Vec::new();
+    let mut s = Vec::new();
+    // Along rows: z_x.
+    for j in 0..ny {
+        let row = &g.nodes[j * nx..(j + 1) * nx];
+        spline::runs(row.iter().map(|n| n.valid), |start, len| {
+            z.clear();
+            z.extend(row[start..start + len].iter().map(|n| n.z_mm));
+            s.resize(len, 0.0);
+            spline::slopes(&z, g.dx_mm, &mut s);
+            for (k, v) in s.iter().enumerate() {
+                d[j * nx + start + k][0] = *v;
+            }
+        });
+    }
+    // Along columns: z_y from the sags, z_xy from the row slopes.
+    for i in 0..nx {
+        let valid = (0..ny).map(|j| g.nodes[j * nx + i].valid);
+        spline::runs(valid, |start, len| {
+            for (what, out) in [(0, 1), (1, 2)] {
+                z.clear();
+                z.extend((start..start + len).map(|j| {
+                    let k = j * nx + i;
+                    if what == 0 { g.nodes[k].z_mm } else { d[k][0] }
+                }));
+                s.resize(len, 0.0);
+                spline::slopes(&z, g.dy_mm, &mut s);
+                for (k, v) in s.iter().enumerate() {
+                    d[(start + k) * nx + i][out] = *v;
+                }
+            }
+        });
+    }
+    (d, Derivatives::Computed)
+}
+
+impl GridSag {
+    /// Reads the data file, checks the spec and builds the surface.
+    pub fn new(spec: &GridSagSpec) -> Result<Self, FieldError> {
+        let text = spec.data.text("data")?;
+        let grid = GridData::parse(text)
+            .map_err(|e| FieldError::new("data", spec.data.name(), e.to_string()))?;
+        let mut s = Self::from_grid(grid, spec.base.as_ref())?;
+        s.name = spec.data.name().to_string();
+        Ok(s)
+    }
+
+    /// Builds the surface from a grid already read, on `base` (None: the plane).
+    pub fn from_grid(grid: GridData, base: Option<&AsphereSpec>) -> Result<Self, FieldError> {
+        let base = match base {
+            Some(b) => Asphere::new(b).map_err(|e| e.within("base"))?,
+            None => Asphere::plane(),
+        };
+        let (d, derivatives) = node_derivatives(&grid);
+        let (nx, ny, dx, dy) = (grid.nx, grid.ny, grid.dx_mm, grid.dy_mm);
+        let mut cells = Vec::with_capacity((nx - 1) * (ny - 1));
+        let mut cell_valid = Vec::with_capacity((nx - 1) * (ny - 1));
+        for j in 0..ny - 1 {
+            for i in 0..nx - 1 {
+                let corner = |a: usize, b: usize| {
+                    let k = (j + b) * nx + i + a;
+                    let [zx, zy, zxy] = d[k];
+                    [grid.nodes[k].z_mm, zx * dx, zy * dy, zxy * dx * dy]
+                };
+                let valid = [(0, 0), (1, 0), (0, 1), (1, 1)]
+                    .iter()
+                    .all(|&(a, b)| grid.nodes[(j + b) * nx + i + a].valid);
+                cell_valid.push(valid);
+                cells.push(if valid {
+                    bicubic::coefficients(&[corner(0, 0), corner(1, 0), corner(0, 1), corner(1, 1)])
+                } else {
+                    [0.0; 16]
+                });
+            }
+        }
+        let (x0, y0) = grid.position(0, 0);
+        Ok(Self {
+            flat_base: base.is_plane(),
+            base,
+            name: "inline data".into(),
+            derivatives,
+            x0,
+            y0,
+            cells,
+            cell_valid,
+            missing: grid.nodes.iter().filter(|n| !n.valid).count(),
+            grid,
+        })
+    }
+
+    /// The grid as read.
+    pub fn grid(&self) -> &GridData {
+        &self.grid
+    }
+
+    /// Where the derivatives came from.
+    pub fn derivatives(&self) -> Derivatives {
+        self.derivatives
+    }
+
+    fn undefined(x: f64, y: f64, reason: String) -> UndefinedError {
+        UndefinedError {
+            surface: "grid sag",
+            x_mm: x,
+            y_mm: y,
+            radius_mm: x.hypot(y),
+            reason,
+        }
+    }
+
+    /// Why the cell (i, j) has no value: its first corner without data.
+    fn missing_corner(&self, i: usize, j: usize) -> String {
+        let g = &self.grid;
+        let (a, b) = [(0, 1), (1, 1), (0, 0), (1, 0)]
+            .into_iter()
+            .find(|&(a, b)| !g.node(i + a, j + b).valid)
+            .unwrap_or((0, 0));
+        let (px, py) = g.position(i + a, j + b);
+        let line = g
+            .line_of(i + a, j + b)
+            .map_or(String::new(), |l| format!(", line {l} of the file"));
+        format!(
+            "the grid has no data at its point in column {} from −x and row {} from the top \
+             ({px} mm, {py} mm{line}), a corner of the cell here",
+            i + a + 1,
+            g.ny - (j + b)
+        )
+    }
+
+    /// `[g, g_x, g_y, g_xx, g_xy, g_yy]` of the grid part at (x, y).
+    fn grid_local(&self, x: f64, y: f64) -> Result<[f64; 6], String> {
+        let g = &self.grid;
+        let (t, s) = ((x - self.x0) / g.dx_mm, (y - self.y0) / g.dy_mm);
+        let (last_i, last_j) = ((g.nx - 1) as f64, (g.ny - 1) as f64);
+        if !(t >= -EDGE && t <= last_i + EDGE && s >= -EDGE && s <= last_j + EDGE) {
+            let (x1, y1) = g.position(g.nx - 1, g.ny - 1);
+            return Err(format!(
+                "outside the grid, which spans x {} … {x1} mm, y {} … {y1} mm",
+                self.x0, self.y0
+            ));
+        }
+        let i = (t.floor().max(0.0) as usize).min(g.nx - 2);
+        let j = (s.floor().max(0.0) as usize).min(g.ny - 2);
+        let k = j * (g.nx - 1) + i;
+        if !self.cell_valid[k] {
+            return Err(self.missing_corner(i, j));
+        }
+        let [p, pu, pv, puu, puv, pvv] = bicubic::eval(&self.cells[k], t - i as f64, s - j as f64);
+        let (dx, dy) = (g.dx_mm, g.dy_mm);
+        Ok([
+            p,
+            pu / dx,
+            pv / dy,
+            puu / (dx * dx),
+            puv / (dx * dy),
+            pvv / (dy * dy),
+        ])
+    }
+}
+
+impl Surface for GridSag {
+    fn local(&self, x: f64, y: f64) -> Result<Local, UndefinedError> {
+        let [z, zx, zy, zxx, zxy, zyy] = self
+            .grid_local(x, y)
+            .map_err(|r| Self::undefined(x, y, r))?;
+        let grid = Local {
+            z,
+            zx,
+            zy,
+            zxx,
+            zxy,
+            zyy,
+        };
+        if self.flat_base {
+            return Ok(grid);
+        }
+        let base = self
+            .base
+            .local(x, y)
+            .map_err(|e| Self::undefined(x, y, e.reason))?;
+        Ok(base + grid)
+    }
+
+    fn feature_length_mm(&self) -> f64 {
+        (2.0 * self.grid.dx_mm.min(self.grid.dy_mm)).min(self.base.feature_length_mm())
+    }
+
+    fn describe(&self) -> String {
+        let g = &self.grid;
+        let derivatives = match self.derivatives {
+            Derivatives::File => "derivatives from the file",
+            Derivatives::Computed => {
+                "derivatives computed (the file's are all zero): not-a-knot bicubic spline"
+            }
+        };
+        let missing = if self.missing > 0 {
+            format!(", {} points without data", self.missing)
+        } else {
+            String::new()
+        };
+        format!(
+            "grid sag (Zemax DAT) from {}: {} × {} points {} × {} mm centred at ({}, {}) mm, file \
+             unit {}, bicubic, {derivatives}{missing}; on {}",
+            self.name,
+            g.nx,
+            g.ny,
+            g.dx_mm,
+            g.dy_mm,
+            g.x_decenter_mm,
+            g.y_decenter_mm,
+            g.unit.name(),
+            if self.flat_base {
+                "the plane z = 0".to_string()
+            } else {
+                self.base.describe()
+            }
+        )
+    }
+}

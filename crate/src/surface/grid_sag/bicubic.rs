@@ -1,0 +1,112 @@
+//! Bicubic Hermite patches on a grid's cells, their 16 coefficients computed once per cell
+//! (the classic bicubic interpolation from values, slopes and cross derivatives at the four
+//! corners: Press et al., *Numerical Recipes*, 3rd ed., §3.6.3, "bcucof"/"bcuint", written
+//! here as a tensor product): in local coordinates u, v ∈ [0, 1] of a cell,
+//! `p(u, v) = Σₖₗ aₖₗ·uᵏ·vˡ` with `A = M·G·Mᵀ`, G the corner data
+//! `[[F₀₀, F_v₀₀, F₀₁, F_v₀₁], [F_u₀₀, F_uv₀₀, F_u₀₁, F_uv₀₁], [F₁₀, …], [F_u₁₀, …]]` (first
+//! index u, second v; slopes in cell units, `F_u = ∂z/∂x·Δx`, `F_uv = ∂²z/∂x∂y·Δx·Δy`) and M the
+//! cubic Hermite basis in monomials, `[p₀, p₀′, p₁, p₁′] ↦ [c₀, c₁, c₂, c₃]`:
+//! `c₀ = p₀`, `c₁ = p₀′`, `c₂ = −3p₀ − 2p₀′ + 3p₁ − p₁′`, `c₃ = 2p₀ + p₀′ − 2p₁ + p₁′`.
+//!
+//! Neighbouring patches share their edge's values and slopes (each edge's cubic is fixed by the
+//! two corners' data), so the surface is C¹ across cells; the Hessian jumps there unless the
+//! corner data come from a spline ([`super::spline`]).
+
+/// The corner data of a patch in cell units: `[F, F_u, F_v, F_uv]` at corners (0,0), (1,0),
+/// (0,1), (1,1) (first index u).
+pub type Corners = [[f64; 4]; 4];
+
+/// `M` of the module docs.
+const M: [[f64; 4]; 4] = [
+    [1.0, 0.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0, 0.0],
+    [-3.0, -2.0, 3.0, -1.0],
+    [2.0, 1.0, -2.0, 1.0],
+];
+
+/// The coefficients `a[4k + l]` of uᵏvˡ of the patch with corner data `c`.
+pub fn coefficients(c: &Corners) -> [f64; 16] {
+    let [c00, c10, c01, c11] = c;
+    let g = [
+        [c00[0], c00[2], c01[0], c01[2]],
+        [c00[1], c00[3], c01[1], c01[3]],
+        [c10[0], c10[2], c11[0], c11[2]],
+        [c10[1], c10[3], c11[1], c11[3]],
+    ];
+    // A = M·G·Mᵀ.
+    let mut mg = [[0.0; 4]; 4];
+    for (k, row) in mg.iter_mut().enumerate() {
+        for (l, slot) in row.iter_mut().enumerate() {
+            *slot = (0..4).map(|q| M[k][q] * g[q][l]).sum();
+        }
+    }
+    let mut a = [0.0; 16];
+    for k in 0..4 {
+        for l in 0..4 {
+            a[4 * k + l] = (0..4).map(|q| mg[k][q] * M[l][q]).sum();
+        }
+    }
+    a
+}
+
+/// `[p, p_u, p_v, p_uu, p_uv, p_vv]` of the patch `a` at (u, v).
+#[inline]
+pub fn eval(a: &[f64; 16], u: f64, v: f64) -> [f64; 6] {
+    let (v2, v3) = (v * v, v * v * v);
+    let mut r = [0.0; 4];
+    let mut rv = [0.0; 4];
+    let mut rvv = [0.0; 4];
+    for k in 0..4 {
+        let c = &a[4 * k..4 * k + 4];
+        r[k] = c[0] + c[1] * v + c[2] * v2 + c[3] * v3;
+        rv[k] = c[1] + 2.0 * c[2] * v + 3.0 * c[3] * v2;
+        rvv[k] = 2.0 * c[2] + 6.0 * c[3] * v;
+    }
+    let (u2, u3) = (u * u, u * u * u);
+    [
+        r[0] + r[1] * u + r[2] * u2 + r[3] * u3,
+        r[1] + 2.0 * r[2] * u + 3.0 * r[3] * u2,
+        rv[0] + rv[1] * u + rv[2] * u2 + rv[3] * u3,
+        2.0 * r[2] + 6.0 * r[3] * u,
+        rv[1] + 2.0 * rv[2] * u + 3.0 * rv[3] * u2,
+        rvv[0] + rvv[1] * u + rvv[2] * u2 + rvv[3] * u3,
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_bicubic_polynomial_is_reproduced_from_its_corner_data() {
+        // f(u, v) = Σ bₖₗ uᵏ vˡ with all 16 terms: its own corner data give back its coefficients.
+        let b: [f64; 16] = std::array::from_fn(|k| (k as f64 * 0.37).sin());
+        let f = |u: f64, v: f64| -> [f64; 4] {
+            let mut out = [0.0; 4];
+            for k in 0..4 {
+                for l in 0..4 {
+                    let c = b[4 * k + l];
+                    let (kf, lf) = (k as f64, l as f64);
+                    out[0] += c * u.powi(k as i32) * v.powi(l as i32);
+                    if k > 0 {
+                        out[1] += c * kf * u.powi(k as i32 - 1) * v.powi(l as i32);
+                    }
+                    if l > 0 {
+                        out[2] += c * lf * u.powi(k as i32) * v.powi(l as i32 - 1);
+                    }
+                    if k > 0 && l > 0 {
+                        out[3] += c * kf * lf * u.powi(k as i32 - 1) * v.powi(l as i32 - 1);
+                    }
+                }
+            }
+            out
+        };
+        let a = coefficients(&[f(0.0, 0.0), f(1.0, 0.0), f(0.0, 1.0), f(1.0, 1.0)]);
+        for (x, y) in a.iter().zip(b) {
+            assert!((x - y).abs() < 1e-13, "{x} {y}");
+        }
+        let e = eval(&a, 0.3, 0.8);
+        assert!((e[0] - f(0.3, 0.8)[0]).abs() < 1e-14);
+        assert!((e[4] - f(0.3, 0.8)[3]).abs() < 1e-13);
+    }
+}

@@ -6,7 +6,7 @@
 //!
 //! | layer | what it holds |
 //! |---|---|
-//! | [`plan`] | the pipeline: a job through every layer into NC, CSV and the report, as a stream |
+//! | [`plan`] | the pipeline: a job admitted (its cost against the limits), then streamed through every layer into NC, CSV and the report |
 //! | [`report`], [`display`] | the plan's report and checks; what the page draws |
 //! | [`analysis`], [`dynamics`] | accuracy (linearization, predicted form, power map); machine dynamics (spectrum, split, axis checks) |
 //! | [`nc`] | the NC writers (three dialects), the CSV and the servo's table |

@@ -92,6 +92,8 @@ function duration(s) {
 }
 
 function bytes(n) {
+  if (!Number.isFinite(n)) return '?';
+  if (n >= 1e9) return `${fmt(n / 1e9, 2)} GB`;
   return n >= 1e6 ? `${fmt(n / 1e6, 2)} MB` : `${fmt(n / 1e3, 1)} kB`;
 }
 
@@ -410,13 +412,6 @@ function showLegend(zMin, zMax, exaggeration, revolutionStep) {
   }));
   $('exaggeration').textContent = `Z × ${fmt(exaggeration, 1)}`;
   $('path-note').textContent = revolutionStep > 1 ? `path: every ${revolutionStep}th revolution shown` : 'path: every revolution shown';
-}
-
-/** Bytes as kB, MB or GB, 3 significant digits. */
-function bytes(n) {
-  if (!Number.isFinite(n)) return '?';
-  const [v, unit] = n < 1e3 ? [n, 'B'] : n < 1e6 ? [n / 1e3, 'kB'] : n < 1e9 ? [n / 1e6, 'MB'] : [n / 1e9, 'GB'];
-  return `${unit === 'B' ? v : v.toPrecision(3)} ${unit}`;
 }
 
 /** The download buttons say what each file will weigh before it is made: the program's size

@@ -79,6 +79,13 @@ for (const backend of ['WebGPU', 'WebGL2']) {
 
     test('downloads equal the command-line output byte for byte', async () => {
       const cli = planWithCli(join(ROOT, 'crate/jobs/lens-array-paper004.json'));
+      // The buttons say what each file weighs before it is made: the program exactly, the
+      // table from the estimate the plan was admitted on (within 1 %).
+      const mb = (n) => (n / 1e6).toFixed(2);
+      assert.equal(await page.textContent('#download-nc'), `Download NC (${mb(cli.nc.length)} MB)`);
+      const label = await page.textContent('#download-csv');
+      const shown = Number(label.match(/about ([0-9.]+) MB/)[1]) * 1e6;
+      assert.ok(Math.abs(shown - cli.csv.length) < 0.01 * cli.csv.length, `${label} vs ${cli.csv.length} B`);
       const nc = await download(page, '#download-nc');
       assert.equal(nc.name, 'lens-array-paper004.ngc');
       assert.ok(nc.bytes.equals(cli.nc), 'NC differs from the command line');

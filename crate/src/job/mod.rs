@@ -96,49 +96,41 @@ impl Job {
     /// Parses a job document (checks syntax and field names, not values).
     /// A UTF-8 byte-order mark in front of the text is skipped; JSON syntax errors give the line
     /// and column.
-    pub fn from_json(text: &str) -> Result<Self, JobError> {
-        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-        let de = &mut serde_json::Deserializer::from_str(text);
-        serde_path_to_error::deserialize::<_, UniqueKeys>(de).map_err(syntax)?;
-        let value: serde_json::Value =
-            serde_json::from_str(text).map_err(|e| JobError::Syntax(e.to_string()))?;
-        Self::from_value(value)
-    }
-
-    /// Reads a job from any serde deserializer (JSON text, a JavaScript object on the page); see
-    /// [`Job::from_value`].
-    pub fn deserialize_from<'de, D: serde::Deserializer<'de>>(de: D) -> Result<Self, JobError>
-    where
-        D::Error: std::fmt::Display,
-    {
-        use serde::Deserialize;
-        let value =
-            serde_json::Value::deserialize(de).map_err(|e| JobError::Syntax(e.to_string()))?;
-        Self::from_value(value)
-    }
-
-    /// Reads a job from a JSON value, which must be an object; errors name the path of the
-    /// offending field, inside a surface family too (`job: surface.phase_y_deg: invalid type:
-    /// string "a", expected f64`).
     ///
     /// ```
     /// let e = spiralcam::job::Job::from_json("[\"a\", 1]").unwrap_err();
     /// assert_eq!(e.to_string(), "job: must be a JSON object {…}, not an array");
     /// ```
-    pub fn from_value(value: serde_json::Value) -> Result<Self, JobError> {
-        if !value.is_object() {
-            let kind = match value {
-                serde_json::Value::Array(_) => "an array",
-                serde_json::Value::String(_) => "a string",
-                serde_json::Value::Number(_) => "a number",
-                serde_json::Value::Bool(_) => "a boolean",
-                _ => "null",
-            };
+    pub fn from_json(text: &str) -> Result<Self, JobError> {
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+        // A first pass: JSON syntax, and no key twice (a later reader would keep the last).
+        let de = &mut serde_json::Deserializer::from_str(text);
+        serde_path_to_error::deserialize::<_, UniqueKeys>(de).map_err(syntax)?;
+        // serde would read an array as the job's fields in order.
+        let kind = match text.trim_start().chars().next() {
+            Some('{') => None,
+            Some('[') => Some("an array"),
+            Some('"') => Some("a string"),
+            Some('t' | 'f') => Some("a boolean"),
+            Some('n') => Some("null"),
+            _ => Some("a number"),
+        };
+        if let Some(kind) = kind {
             return Err(JobError::Syntax(format!(
                 "must be a JSON object {{…}}, not {kind}"
             )));
         }
-        serde_path_to_error::deserialize(value).map_err(syntax)
+        Self::deserialize_from(&mut serde_json::Deserializer::from_str(text))
+    }
+
+    /// Reads a job from any serde deserializer (JSON text, a JavaScript object on the page);
+    /// errors name the path of the offending field, inside a surface family too
+    /// (`job: surface.phase_y_deg: invalid type: string "a", expected f64`).
+    pub fn deserialize_from<'de, D: serde::Deserializer<'de>>(de: D) -> Result<Self, JobError>
+    where
+        D::Error: std::fmt::Display,
+    {
+        serde_path_to_error::deserialize(de).map_err(syntax)
     }
 
     /// The page's default job: paper 004's lens array.

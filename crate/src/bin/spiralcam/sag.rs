@@ -2,6 +2,7 @@
 
 use crate::files::read_text;
 use crate::{Failure, read_job, run_err};
+use spiralcam::field::short;
 use spiralcam::surface::data_file::MAX_DATA_BYTES;
 use std::io::{BufWriter, Write};
 
@@ -52,8 +53,10 @@ pub fn run(words: &[String]) -> Result<(), Failure> {
         let values = [l.z, l.zx, l.zy, l.zxx, l.zxy, l.zyy];
         if values.iter().any(|v| !v.is_finite()) {
             return Err(at_line(format!(
-                "the surface is not finite at x = {x}, y = {y} (z = {}): no value to print",
-                l.z
+                "the surface is not finite at x = {}, y = {} (z = {}): no value to print",
+                short(x),
+                short(y),
+                short(l.z)
             )));
         }
         writeln!(

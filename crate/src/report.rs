@@ -206,6 +206,38 @@ fn three_digits(v: f64) -> String {
     }
 }
 
+/// A program's passes and files (jobs with a `program` section).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ProgramReport {
+    /// The stock before the first pass, mm.
+    pub stock_mm: f64,
+    /// How the passes are written.
+    pub loop_kind: crate::job::LoopKind,
+    /// The safe height the program starts and ends at, mm.
+    pub safe_z_mm: f64,
+    /// Every pass, in order.
+    pub passes: Vec<PassReport>,
+    /// The child programs, in the order called (none when the program is one file).
+    pub children: Vec<crate::nc::program::ChildProgram>,
+}
+
+/// One pass of a program.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PassReport {
+    /// Its group in `program.passes`.
+    pub group: usize,
+    /// The stock left after it, mm (the design is raised by it).
+    pub stock_left_mm: f64,
+    /// Its spiral's feed, mm/rev.
+    pub feed_mm_per_rev: f64,
+    /// Its spindle speed, rev/min.
+    pub spindle_rpm: f64,
+    /// Points on its path.
+    pub points: u64,
+    /// Its cutting time (the spiral alone), s.
+    pub cutting_time_s: f64,
+}
+
 /// What a plan produced and what it found.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Report {
@@ -255,12 +287,18 @@ pub struct Report {
     pub shallow_concave_zones: usize,
     /// Zones found but not measured (beyond the most the report measures, the least sharp).
     pub unmeasured_concave_zones: usize,
+    /// What lies beyond the part's edge and where the spiral starts (`part.beyond_edge`,
+    /// `strategy.overtravel_mm`).
+    pub part_edge: String,
     /// Findings an operator must read before cutting.
     pub warnings: Vec<String>,
     /// What the job was estimated to cost before it was planned (set by the caller that
     /// admitted it, [`crate::plan::Planner::cost`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub estimate: Option<Cost>,
+    /// The program's passes and files, for a job with a `program` section.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub program: Option<ProgramReport>,
     /// Spectrum, split and axis checks, when the job asks for them
     /// ([`crate::dynamics::wanted`]).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -343,9 +381,11 @@ impl Report {
             first_two_way_loop_at: stats.first_loop.map(|(r, t)| Location::new(r, t)),
             concave_zones,
             estimate: None,
+            program: None,
             dynamics: None,
             shallow_concave_zones: reach.shallow_zones,
             unmeasured_concave_zones: reach.unmeasured_zones,
+            part_edge: job.edge_description(),
             warnings,
         }
     }

@@ -79,8 +79,10 @@ fn a_split_program_adds_up_to_the_single_channel_program() {
     assert_eq!(split.len() as u64, report.points - 1);
     assert_eq!(split.len(), single.len());
     let mut moving = 0;
+    // ISO's servo word is Y (a linear axis LinuxCNC reads).
+    let servo = job.output.conventions().fts_word as char;
     for (s, p) in split.iter().zip(&single) {
-        let (z, w) = (word(s, 'Z').unwrap(), word(s, 'W').unwrap());
+        let (z, w) = (word(s, 'Z').unwrap(), word(s, servo).unwrap());
         assert_eq!(z + w, word(p, 'Z').unwrap(), "{s} | {p}");
         assert_eq!((word(s, 'X'), word(s, 'C')), (word(p, 'X'), word(p, 'C')));
         moving += usize::from(w != 0);
@@ -100,7 +102,7 @@ fn a_split_program_adds_up_to_the_single_channel_program() {
             [
                 word(s, 'C').unwrap(),
                 word(s, 'X').unwrap(),
-                word(s, 'W').unwrap()
+                word(s, servo).unwrap()
             ]
         );
     }
@@ -136,7 +138,8 @@ fn a_tilted_flat_is_cut_by_the_slide_alone() {
     let (report, nc, _) = plan(&job);
     let blocks = blocks(&nc);
     assert!(!blocks.is_empty());
-    assert!(blocks.iter().all(|b| word(b, 'W') == Some(0)), "W ≡ 0");
+    let servo = job.output.conventions().fts_word as char;
+    assert!(blocks.iter().all(|b| word(b, servo) == Some(0)), "W ≡ 0");
     let split = report.dynamics.unwrap().split.unwrap();
     assert!(matches!(
         split.verdict,

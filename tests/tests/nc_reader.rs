@@ -208,7 +208,10 @@ fn style_end(d: Dialect) -> &'static str {
 #[test]
 fn a_split_program_reads_back_with_the_servo_axis() {
     let mut job = common::example_job("tilted-flat.json");
-    job.output = spiralcam::job::OutputSpec::default();
+    job.output = spiralcam::job::OutputSpec {
+        fts_word: Some("W".into()),
+        ..Default::default()
+    };
     let slide = |p: &PathPoint| p.z - 0.02 * (0.5 + 0.5 * (5.0 * p.theta).sin());
     let (pts, nc) = common::split_program(&job, slide);
     let r = read("split.ngc", &nc);

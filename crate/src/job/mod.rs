@@ -16,15 +16,17 @@
 
 pub mod machine;
 pub mod output;
+pub mod program;
 pub mod strategy;
 pub mod tool;
 
 pub use machine::MachineSpec;
 pub use output::{Dialect, FeedMode, OutputSpec};
+pub use program::{LoopKind, PassGroup, ProgramSpec};
 pub use strategy::{Compensation, Direction, Sampling, SplitSpec, StrategySpec};
 pub use tool::{ToolAngles, ToolSpec};
 
-use crate::field::{FieldError, finite, join_path, positive};
+use crate::field::{FieldError, finite, join_path, non_negative, positive};
 use crate::surface::{PartDisc, Reframed, Surface, SurfaceSpec};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -54,6 +56,10 @@ pub struct Job {
     /// What is written.
     #[serde(default)]
     pub output: OutputSpec,
+    /// The program around the path: set-up words, approach, passes, loops, child programs;
+    /// absent, one spiral ([`program`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub program: Option<ProgramSpec>,
 }
 
 /// The blank.
@@ -67,6 +73,29 @@ pub struct PartSpec {
     /// being mounted with that point on the axis ([`crate::surface::Reframed`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub normal_axis_at_mm: Option<[f64; 2]>,
+    /// What lies beyond the part's edge (its radius): `none` (default: no material; the nose's
+    /// arc is cut at the edge) or `surface` (the design continues, as on a blank larger than the
+    /// clear aperture: the arc rests on it there too).
+    #[serde(default, skip_serializing_if = "BeyondEdge::is_none")]
+    pub beyond_edge: BeyondEdge,
+}
+
+/// What lies beyond the part's edge.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BeyondEdge {
+    /// No material: the nose's arc is cut at the edge.
+    #[default]
+    None,
+    /// The design continues.
+    Surface,
+}
+
+impl BeyondEdge {
+    /// Whether this is the default, no material beyond the edge.
+    pub fn is_none(&self) -> bool {
+        *self == BeyondEdge::None
+    }
 }
 
 /// A job that cannot be read.
@@ -180,9 +209,32 @@ impl Job {
 
     /// Radius where the spiral starts, mm (before rounding to whole steps).
     pub fn outer_radius_mm(&self) -> f64 {
-        self.strategy
+        let inside = self
+            .strategy
             .outer_radius_mm
-            .unwrap_or_else(|| self.part_radius_mm())
+            .unwrap_or_else(|| self.part_radius_mm());
+        inside + self.strategy.overtravel_mm
+    }
+
+    /// What lies beyond the part's edge and where the spiral starts, for headers and reports.
+    pub fn edge_description(&self) -> String {
+        let edge = match self.part.beyond_edge {
+            BeyondEdge::None => "no material beyond the part's edge (the nose's arc is cut there)",
+            BeyondEdge::Surface => "the design continues beyond the part's edge",
+        };
+        format!(
+            "{edge}; the spiral starts {} mm outside the part's radius",
+            crate::field::short(self.strategy.overtravel_mm)
+        )
+    }
+
+    /// Where the material ends for the nose's arc, mm: the part's radius, or nowhere when the
+    /// design continues beyond the edge (`part.beyond_edge`).
+    pub fn material_radius_mm(&self) -> f64 {
+        match self.part.beyond_edge {
+            BeyondEdge::None => self.part_radius_mm(),
+            BeyondEdge::Surface => f64::INFINITY,
+        }
     }
 
     /// Reads the data files the job names by path (scattered points, STEP files) with `read`,
@@ -294,7 +346,40 @@ impl Job {
                 .into());
             }
         }
+        non_negative("strategy.overtravel_mm", self.strategy.overtravel_mm)?;
+        if self.strategy.overtravel_mm > self.part_radius_mm() {
+            return Err(FieldError::new(
+                "strategy.overtravel_mm",
+                self.strategy.overtravel_mm,
+                format!("at most the part's radius {} mm", self.part_radius_mm()),
+            )
+            .into());
+        }
         self.output.validate().map_err(|e| e.within("output"))?;
+        if let Some(program) = &self.program {
+            program.validate().map_err(|e| e.within("program"))?;
+            if self.output.dialect == Dialect::Iso {
+                for (field, m) in [("c_axis_on", &program.c_axis_on), ("c_axis_off", &program.c_axis_off)] {
+                    if let Some(m) = m.as_ref().filter(|m| m.contains('.')) {
+                        return Err(FieldError::new(
+                            format!("program.{field}"),
+                            format!("{m:?}"),
+                            "a whole M word in the ISO dialect: LinuxCNC reads no decimal M codes",
+                        )
+                        .into());
+                    }
+                }
+            }
+            if self.strategy.split.is_some() && program.has_own_spirals() {
+                return Err(FieldError::new(
+                    "program.passes",
+                    "a group with its own feed_mm_per_rev or spindle_rpm",
+                    "not with strategy.split: the split is made for the strategy's spiral; give \
+                     every pass the strategy's feed and the machine's speed",
+                )
+                .into());
+            }
+        }
         Ok(())
     }
 }

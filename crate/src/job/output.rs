@@ -27,17 +27,58 @@ pub enum Dialect {
     Precitech,
 }
 
-/// How the feed is programmed.
+/// How the feed is programmed. Under `G93` each block's F is computed from the spindle speed
+/// and the block's spindle angle ΔC, so that the spindle turns at `machine.spindle_rpm`; what
+/// the number means differs between controllers, and no vendor manual of Moore's or
+/// Precitech's controllers was available: the three readings known from public material are
+/// options, and the program's header states the spindle speed and the cycle time either way.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FeedMode {
-    /// `G93` inverse time, F per block from the spindle speed (default).
+    /// `G93` inverse time: F = 1/(block time in minutes) = rpm·360°/ΔC, as RS274/NGC and
+    /// LinuxCNC define it (default).
     #[default]
     InverseTime,
+    /// `G93` with F the block's time in seconds = 60·ΔC/(360°·rpm), as Beckhoff's TwinCAT CNC
+    /// manual defines G93 ("machining time in seconds"); a lab's Moore program running 360
+    /// blocks a revolution at `G93 F0.001` reads this way as 167 rpm.
+    BlockTimeS,
+    /// `G93` with F the block's time in minutes = ΔC/(360°·rpm).
+    BlockTimeMin,
     /// `G94` with one F in mm/min (`feed_mm_per_min`), for controllers that run the spindle on
     /// its own.
     PerMinute,
 }
+
+impl FeedMode {
+    /// Whether the blocks are written under `G93` (F per block from the spindle speed).
+    pub fn per_block(self) -> bool {
+        self != FeedMode::PerMinute
+    }
+
+    /// F of a block turning the spindle by `dc_deg` degrees at `rpm`.
+    pub fn block_f(self, rpm: f64, dc_deg: f64) -> f64 {
+        match self {
+            FeedMode::InverseTime => rpm * 360.0 / dc_deg,
+            FeedMode::BlockTimeS => 60.0 * dc_deg / (360.0 * rpm),
+            FeedMode::BlockTimeMin => dc_deg / (360.0 * rpm),
+            FeedMode::PerMinute => f64::NAN,
+        }
+    }
+
+    /// What F means, for the program's header.
+    pub fn meaning(self) -> &'static str {
+        match self {
+            FeedMode::InverseTime => "G93 F = 1/block time in minutes (inverse time)",
+            FeedMode::BlockTimeS => "G93 F = block time in seconds",
+            FeedMode::BlockTimeMin => "G93 F = block time in minutes",
+            FeedMode::PerMinute => "G94 F = mm/min",
+        }
+    }
+}
+
+/// The shortest line limit a job may set, characters.
+pub const MIN_LINE_CHARS: u32 = 40;
 
 /// Output options of a job. Signs are +1 or −1; unset ones take the dialect's default.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -72,9 +113,17 @@ pub struct OutputSpec {
     /// Height of the approach and retract above the first and last point, mm, ≥ 0; default 1.
     pub clearance_mm: f64,
     /// The word of the fast tool servo's channel in split programs: one of `A B U V W Y`;
-    /// default `W`.
+    /// default `Y` for ISO (a linear axis LinuxCNC's interpreter always reads), `W` otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fts_word: Option<String>,
+    /// Longest line, characters (≥ 40); default the dialect's (ISO 255, LinuxCNC's limit;
+    /// Moore and Precitech styles 128). Longer comments are wrapped over several lines; a block
+    /// longer than this is an error.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_line_chars: Option<u32>,
+    /// Decimals of F, 0…9; default 3, 6 for the block-time feed modes.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub decimals_f: Option<u32>,
 }
 
 impl Default for OutputSpec {
@@ -92,6 +141,8 @@ impl Default for OutputSpec {
             plunge_feed_mm_per_min: 50.0,
             clearance_mm: 1.0,
             fts_word: None,
+            max_line_chars: None,
+            decimals_f: None,
         }
     }
 }
@@ -99,9 +150,19 @@ impl Default for OutputSpec {
 impl OutputSpec {
     /// Checks the options.
     pub fn validate(&self) -> Result<(), FieldError> {
+        if let Some(n) = self.max_line_chars
+            && n < MIN_LINE_CHARS
+        {
+            return Err(FieldError::new(
+                "max_line_chars",
+                n,
+                format!("at least {MIN_LINE_CHARS}"),
+            ));
+        }
         for (field, d) in [
             ("decimals_xz", self.decimals_xz),
             ("decimals_c", self.decimals_c),
+            ("decimals_f", self.decimals_f.unwrap_or(0)),
         ] {
             if d > MAX_DECIMALS {
                 return Err(FieldError::new(

@@ -23,6 +23,11 @@ pub struct StrategySpec {
     /// Radius where the spiral starts, mm; default the part radius.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub outer_radius_mm: Option<f64>,
+    /// How far outside that radius the spiral starts, mm, ≥ 0 (at most the part's radius);
+    /// default 0. Beyond the edge with no material (`part.beyond_edge: none`) the nose's arc
+    /// rests on the design's continuation at its inner end: the tool is in the air there.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub overtravel_mm: f64,
     /// Tool nose compensation, `one_way` (default) or `two_way`
     /// ([`crate::job::Compensation`]).
     #[serde(default, skip_serializing_if = "Compensation::is_one_way")]
@@ -141,4 +146,8 @@ pub enum SplitSpec {
     },
     /// The slide alone if it can, else the lowest cutoff at which W fits the FTS stroke.
     Auto,
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }

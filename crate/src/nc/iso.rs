@@ -4,7 +4,7 @@
 //! requires it); C cumulative by default, since a rotary axis in absolute mode would turn back
 //! at each wrap; `M2` ends the program.
 
-use super::{Axis, Style};
+use super::{Axis, Macros, Style};
 
 /// The ISO style.
 pub static STYLE: Style = Style {
@@ -17,4 +17,7 @@ pub static STYLE: Style = Style {
     x_sign: 1.0,
     wrap_c: false,
     end: &["M2"],
+    fts_word: b'Y',
+    max_line: 255,
+    macros: Macros::LinuxCnc,
 };

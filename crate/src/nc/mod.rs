@@ -22,11 +22,13 @@
 //! The [`reader`] goes the other way: it runs a program of any of these dialects (or written by
 //! another system) and hands out its moves, for verification against the design.
 
+pub mod blocks;
 pub mod csv;
 pub mod fts_table;
 mod iso;
 mod moore;
 pub mod number;
+pub mod program;
 mod precitech;
 pub mod reader;
 
@@ -35,7 +37,8 @@ pub use fts_table::FtsTableWriter;
 
 use crate::job::{Dialect, FeedMode, OutputSpec};
 use crate::path::PathPoint;
-use number::{push_fixed, push_scaled, scaled};
+pub use blocks::{Blocks, comment_lines};
+use number::{push_scaled, scaled};
 use std::io::Write;
 use thiserror::Error;
 
@@ -64,8 +67,21 @@ impl OutputSpec {
                 .fts_word
                 .as_deref()
                 .and_then(|w| w.bytes().next())
-                .unwrap_or(b'W'),
+                .unwrap_or(st.fts_word),
         }
+    }
+
+    /// The longest line written, characters.
+    pub fn max_line(&self) -> usize {
+        self.max_line_chars.unwrap_or(self.style().max_line) as usize
+    }
+
+    /// Decimals of F.
+    pub fn decimals_f(&self) -> u32 {
+        self.decimals_f.unwrap_or(match self.feed_mode {
+            FeedMode::BlockTimeS | FeedMode::BlockTimeMin => 6,
+            _ => 3,
+        })
     }
 }
 
@@ -90,6 +106,23 @@ pub struct Style {
     pub wrap_c: bool,
     /// Lines that end the program.
     pub end: &'static [&'static str],
+    /// Default word of the fast tool servo.
+    pub fts_word: u8,
+    /// Longest line the controller reads, characters (a style's assumption; the job can set it).
+    pub max_line: u32,
+    /// How loops, variables and subprogram calls are written.
+    pub macros: Macros,
+}
+
+/// The dialect's control flow: loops, variables and calls of child programs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Macros {
+    /// Fanuc macro B style (Moore, Precitech styles): `#100 = …`, `WHILE [#103 LT #100] DO 1`
+    /// … `END 1`, `G52 Z[#102]`; children `O1` … `M99`, called by `M98 P1`.
+    Fanuc,
+    /// LinuxCNC: `#<stock> = …`, `o100 repeat [n]` … `o100 endrepeat`, `G52 Z#<stock>`;
+    /// children `o<name-1> sub` … `o<name-1> endsub`, called by `o<name-1> call`.
+    LinuxCnc,
 }
 
 /// An axis word.
@@ -211,6 +244,24 @@ pub enum NcError {
         /// Where: ρ mm and θ radians, when known.
         at: Option<(f64, f64)>,
     },
+    /// A line is longer than the dialect's (or the job's) limit.
+    ///
+    /// ```
+    /// let e = spiralcam::nc::NcError::LineTooLong { index: 3, chars: 140, limit: 128 };
+    /// assert!(e.to_string().starts_with("point 3: a line of 140 characters"));
+    /// ```
+    #[error(
+        "point {index}: a line of {chars} characters, longer than {limit} \
+         (output.max_line_chars, or the dialect's limit): fewer decimals or a longer limit"
+    )]
+    LineTooLong {
+        /// Point index along the path.
+        index: u64,
+        /// The line's length.
+        chars: usize,
+        /// The limit.
+        limit: usize,
+    },
     /// The output failed.
     ///
     /// ```
@@ -257,169 +308,88 @@ pub struct Header {
     pub spindle_rpm: f64,
 }
 
-/// Streams one NC program.
+/// Streams the one-spiral program of a job without a `program` section: header, preamble,
+/// approach, one block per point, retract, end.
 pub struct NcWriter<W: Write> {
     out: W,
-    style: &'static Style,
-    conv: Conventions,
-    feed_mode: FeedMode,
+    blocks: Blocks,
     feed_mm_per_min: f64,
     plunge_feed: f64,
     clearance: f64,
-    spindle_rpm: f64,
-    line: Vec<u8>,
-    /// θ and z of the previous point.
-    last: Option<(f64, f64)>,
-    last_f: Option<i64>,
+    /// z of the last point.
+    last_z: Option<f64>,
     bytes: u64,
 }
 
-/// Decimals of F.
-const DECIMALS_F: u32 = 3;
-
 impl<W: Write> NcWriter<W> {
-    /// Starts a program: writes the header comments and the preamble.
+    /// Starts a program: writes the header comments (wrapped to the line limit) and the
+    /// preamble.
     pub fn new(mut out: W, spec: &OutputSpec, header: &Header) -> Result<Self, NcError> {
         let style = spec.style();
-        let mut bytes = 0u64;
         let mut text = String::new();
         for l in &header.lines {
-            text.push_str(&format!("({})\n", ascii_comment(l)));
+            for c in comment_lines(l, spec.max_line()) {
+                text.push_str(&c);
+                text.push('\n');
+            }
         }
         for l in style.preamble {
             text.push_str(l);
             text.push('\n');
         }
         out.write_all(text.as_bytes())?;
-        bytes += text.len() as u64;
         Ok(Self {
             out,
-            style,
-            conv: spec.conventions(),
-            feed_mode: spec.feed_mode,
+            blocks: Blocks::new(spec, header.spindle_rpm),
             feed_mm_per_min: spec.feed_mm_per_min.unwrap_or(0.0),
             plunge_feed: spec.plunge_feed_mm_per_min,
             clearance: spec.clearance_mm,
-            spindle_rpm: header.spindle_rpm,
-            line: Vec::with_capacity(96),
-            last: None,
-            last_f: None,
-            bytes,
+            last_z: None,
+            bytes: text.len() as u64,
         })
     }
 
     /// Writes the block that reaches `p` (the approach for the first point).
     pub fn point(&mut self, p: &PathPoint) -> Result<(), NcError> {
-        let w = self.conv.words(p.index, p.rho, p.theta, p.z)?;
+        let w = self.blocks.words(p, None, 0.0)?;
         self.block(p, w)
     }
 
     /// Writes the block that reaches `p` with its height split: Z the slide at `z_slide`, and
     /// the fast tool servo's word the rest (see [`Conventions::split_words`]).
     pub fn point_split(&mut self, p: &PathPoint, z_slide: f64) -> Result<(), NcError> {
-        let w = self
-            .conv
-            .split_words(p.index, p.rho, p.theta, p.z, z_slide)?;
+        let w = self.blocks.words(p, Some(z_slide), 0.0)?;
         self.block(p, w)
     }
 
     fn block(&mut self, p: &PathPoint, w: Words) -> Result<(), NcError> {
-        self.line.clear();
-        match self.last {
-            None => self.approach(w, p)?,
-            Some((prev_theta, _)) => {
-                self.line
-                    .extend_from_slice(self.style.block_prefix.as_bytes());
-                self.push_words(w);
-                if self.feed_mode == FeedMode::InverseTime {
-                    let dtheta = (p.theta - prev_theta).abs();
-                    let f = self.spindle_rpm * std::f64::consts::TAU / dtheta;
-                    let units = scaled(f, DECIMALS_F).ok_or(NcError::Unwritable {
-                        index: p.index,
-                        what: "F",
-                        value: f,
-                        at: Some((p.rho, p.theta)),
-                    })?;
-                    if self.style.feed_every_block || self.last_f != Some(units) {
-                        self.line.extend_from_slice(b" F");
-                        push_scaled(&mut self.line, units, DECIMALS_F);
-                        self.last_f = Some(units);
-                    }
-                }
-                self.line.push(b'\n');
-            }
+        if self.blocks.started() {
+            self.blocks.block(p, w)?;
+        } else {
+            self.approach(w, p)?;
+            self.blocks.start(p.theta);
         }
-        self.out.write_all(&self.line)?;
-        self.bytes += self.line.len() as u64;
-        self.last = Some((p.theta, p.z));
+        self.out.write_all(&self.blocks.line)?;
+        self.bytes += self.blocks.line.len() as u64;
+        self.last_z = Some(p.z);
         Ok(())
     }
 
+    /// Rapid above the first point, rapid to its X and C, feed down at the plunge feed.
     fn approach(&mut self, w: Words, p: &PathPoint) -> Result<(), NcError> {
-        let safe = self.conv.z_units(p.index, p.z + self.clearance)?;
-        let d = self.conv.decimals_xz;
-        let l = &mut self.line;
-        l.extend_from_slice(b"G0 Z");
-        push_scaled(l, safe, d);
-        l.extend_from_slice(b"\nG0 ");
-        self.push_xc(w);
-        self.line.extend_from_slice(b"\nG1 Z");
-        push_scaled(&mut self.line, w.z, d);
-        self.push_fts_word(w);
-        self.line.extend_from_slice(b" F");
-        push_fixed(&mut self.line, self.plunge_feed, DECIMALS_F);
-        self.line.push(b'\n');
-        match self.feed_mode {
-            FeedMode::InverseTime => self.line.extend_from_slice(b"G93\n"),
-            FeedMode::PerMinute => {
-                self.line.extend_from_slice(b"F");
-                push_fixed(&mut self.line, self.feed_mm_per_min, DECIMALS_F);
-                self.line.push(b'\n');
-            }
-        }
+        let b = &mut self.blocks;
+        b.line.clear();
+        b.line.extend_from_slice(b"G0 ");
+        b.push_z(p.z + self.clearance)?;
+        b.line.extend_from_slice(b"\nG0 ");
+        b.push_xc(w);
+        b.line.extend_from_slice(b"\nG1 Z");
+        push_scaled(&mut b.line, w.z, b.conv.decimals_xz);
+        b.push_fts_word(w);
+        b.push_feed(self.plunge_feed);
+        b.line.push(b'\n');
+        b.push_cutting_mode(self.feed_mm_per_min);
         Ok(())
-    }
-
-    fn push_xc(&mut self, w: Words) {
-        let mut first = true;
-        for axis in self.style.words {
-            if axis == Axis::Z {
-                continue;
-            }
-            if !first {
-                self.line.push(b' ');
-            }
-            first = false;
-            self.push_word(axis, w);
-        }
-    }
-
-    fn push_words(&mut self, w: Words) {
-        for (i, axis) in self.style.words.into_iter().enumerate() {
-            if i > 0 {
-                self.line.push(b' ');
-            }
-            self.push_word(axis, w);
-        }
-        self.push_fts_word(w);
-    }
-
-    fn push_fts_word(&mut self, w: Words) {
-        if let Some(units) = w.w {
-            self.line.push(b' ');
-            self.line.push(self.conv.fts_word);
-            push_scaled(&mut self.line, units, self.conv.decimals_xz);
-        }
-    }
-
-    fn push_word(&mut self, axis: Axis, w: Words) {
-        let (letter, units, d) = match axis {
-            Axis::C => (b'C', w.c, self.conv.decimals_c),
-            Axis::X => (b'X', w.x, self.conv.decimals_xz),
-            Axis::Z => (b'Z', w.z, self.conv.decimals_xz),
-        };
-        self.line.push(letter);
-        push_scaled(&mut self.line, units, d);
     }
 
     /// Bytes written so far.
@@ -429,23 +399,23 @@ impl<W: Write> NcWriter<W> {
 
     /// Writes the retract and the end; returns the program's size in bytes.
     pub fn finish(mut self) -> Result<u64, NcError> {
-        self.line.clear();
-        if self.feed_mode == FeedMode::InverseTime {
-            self.line.extend_from_slice(b"G94\n");
+        let b = &mut self.blocks;
+        b.line.clear();
+        if b.feed_mode().per_block() {
+            b.line.extend_from_slice(b"G94\n");
         }
-        if let Some((_, z)) = self.last {
-            let safe = self.conv.z_units(u64::MAX, z + self.clearance)?;
-            self.line.extend_from_slice(b"G0 Z");
-            push_scaled(&mut self.line, safe, self.conv.decimals_xz);
-            self.line.push(b'\n');
+        if let Some(z) = self.last_z {
+            b.line.extend_from_slice(b"G0 ");
+            b.push_z(z + self.clearance)?;
+            b.line.push(b'\n');
         }
-        for l in self.style.end {
-            self.line.extend_from_slice(l.as_bytes());
-            self.line.push(b'\n');
+        for l in b.style.end {
+            b.line.extend_from_slice(l.as_bytes());
+            b.line.push(b'\n');
         }
-        self.out.write_all(&self.line)?;
+        self.out.write_all(&b.line)?;
         self.out.flush()?;
-        Ok(self.bytes + self.line.len() as u64)
+        Ok(self.bytes + b.line.len() as u64)
     }
 }
 
@@ -545,7 +515,13 @@ mod tests {
             ..Default::default()
         };
         assert_eq!(spec("U").conventions().fts_word, b'U');
-        assert_eq!(OutputSpec::default().conventions().fts_word, b'W');
+        // ISO's default is Y, a linear axis LinuxCNC's interpreter always reads; W elsewhere.
+        assert_eq!(OutputSpec::default().conventions().fts_word, b'Y');
+        let moore = OutputSpec {
+            dialect: Dialect::Moore,
+            ..Default::default()
+        };
+        assert_eq!(moore.conventions().fts_word, b'W');
         for bad in ["Z", "w", "WW", ""] {
             let e = spec(bad).validate().unwrap_err().to_string();
             assert_eq!(
@@ -581,7 +557,7 @@ mod tests {
         w.point_split(&p, -0.01).unwrap();
         w.finish().unwrap();
         let text = String::from_utf8(nc).unwrap();
-        assert!(text.contains("G1 Z-0.010000 W-0.002346 F"), "{text}");
+        assert!(text.contains("G1 Z-0.010000 Y-0.002346 F"), "{text}");
         assert!(text.contains("G0 X1.500000 C14.32394"), "{text}");
     }
 

@@ -3,7 +3,7 @@
 //! F repeated only when it changes; C in degrees wrapped to [0, 360); `M30` ends the program.
 //! A style, not Moore's specification: check against the machine's programming manual.
 
-use super::{Axis, Style};
+use super::{Axis, Macros, Style};
 
 /// The Moore Nanotech style.
 pub static STYLE: Style = Style {
@@ -16,4 +16,7 @@ pub static STYLE: Style = Style {
     x_sign: 1.0,
     wrap_c: true,
     end: &["M30"],
+    fts_word: b'W',
+    max_line: 128,
+    macros: Macros::Fanuc,
 };

@@ -83,7 +83,9 @@ impl Planner {
     /// the caller has one. Errors: the surface undefined where a probe falls, or a word that
     /// cannot be written there (a height that is not finite), before any output exists.
     pub fn cost(&self, clock: Option<&dyn Fn() -> f64>) -> Result<Cost, PlanError> {
-        let points = self.spiral().point_count_hint();
+        let path_points = self.spiral().point_count_hint();
+        let (written, computed) = program_factors(self.job());
+        let points = (path_points as f64 * written).round() as u64;
         let passes = if dynamics::wanted(self.job()) { 2 } else { 1 };
         let probes = self.probe(PROBES)?;
         check_heights(&probes)?;
@@ -98,19 +100,20 @@ impl Planner {
                 let t2 = now();
                 let per_point = |t: f64| t.max(0.0) / (2 * PROBES) as f64;
                 let compensate = per_point(t1 - t0) * passes as f64 / workers() as f64;
-                Some(points as f64 * (compensate + per_point(t2 - t1)))
+                let n = path_points as f64;
+                Some(n * computed * compensate + n * written * per_point(t2 - t1))
             }
         };
         let split = self.job().strategy.split.is_some();
-        let n = points as f64;
+        let n = path_points as f64;
         Ok(Cost {
             points,
             passes,
-            nc_bytes: w.nc_fixed + (w.nc_block * (n - 1.0).max(0.0)) as u64,
+            nc_bytes: w.nc_fixed + (w.nc_block * written * (n - 1.0).max(0.0)) as u64,
             csv_bytes: crate::nc::csv::HEADER.len() as u64 + (w.csv_row * n) as u64,
             fts_table_bytes: split
                 .then(|| crate::nc::fts_table::HEADER.len() as u64 + (w.fts_row * n) as u64),
-            dynamics_memory_bytes: (passes == 2).then(|| points * DYNAMICS_BYTES_PER_POINT),
+            dynamics_memory_bytes: (passes == 2).then(|| path_points * DYNAMICS_BYTES_PER_POINT),
             seconds,
         })
     }
@@ -192,6 +195,31 @@ fn check_heights(probes: &[Probe]) -> Result<(), FieldError> {
         }
     }
     Ok(())
+}
+
+/// How many times the strategy's path is written and computed for `job`'s program, relative
+/// to the path: every body a program writes (one a group in a controller loop, one a pass
+/// written out), a group with its own feed scaled by the count's 1/f, and once more a group for
+/// its heights ([`crate::plan::Planner::run`]). (1, 1) without a `program` section.
+fn program_factors(job: &crate::job::Job) -> (f64, f64) {
+    let Some(spec) = &job.program else {
+        return (1.0, 1.0);
+    };
+    if spec.passes.is_empty() {
+        return (1.0, 2.0);
+    }
+    let feed = job.strategy.feed_mm_per_rev;
+    let (mut written, mut computed) = (0.0, 0.0);
+    for g in &spec.passes {
+        let ratio = feed / g.feed_mm_per_rev.unwrap_or(feed);
+        let bodies = match spec.loop_kind {
+            crate::job::LoopKind::Controller => 1.0,
+            crate::job::LoopKind::Unrolled => g.count as f64,
+        };
+        written += ratio * bodies;
+        computed += ratio * (bodies + 1.0);
+    }
+    (written, computed)
 }
 
 impl Limits {

@@ -7,6 +7,7 @@
 //! ([`crate::display::DisplayPath`]) keeps points, decimated to a fixed budget.
 
 pub mod admission;
+mod program;
 
 pub use admission::Limits;
 
@@ -14,8 +15,9 @@ use crate::display::DisplayPath;
 use crate::dynamics::{Dynamics, DynamicsError};
 use crate::field::FieldError;
 use crate::job::{Compensation, Job, JobError, Sampling, SplitSpec};
+use crate::nc::program::ChildFiles;
 use crate::nc::{CsvWriter, FtsTableWriter, Header, NcError, NcWriter};
-use crate::path::{PathError, hcaa};
+use crate::path::{PathError, PathPoint, hcaa};
 use crate::progress::{Progress, ProgressFn, Stage};
 use crate::report::{Report, Stats};
 use crate::surface::UndefinedError;
@@ -110,6 +112,11 @@ pub struct Sinks<'a> {
     pub z_slide: Option<&'a [f64]>,
     /// The servo's table (`c_deg,x_mm,w_mm`), written when `z_slide` is given.
     pub fts_table: Option<&'a mut dyn Write>,
+    /// Where child programs go, for a job whose `program.max_program_bytes` the program
+    /// exceeds; without it they are only counted.
+    pub children: Option<&'a mut dyn ChildFiles>,
+    /// The stem of the child programs' names (`STEM-1.nc`); default the job's name.
+    pub child_stem: Option<String>,
 }
 
 /// A checked job, ready to plan: its [`ToolPath`] (which it dereferences to) and the
@@ -236,6 +243,26 @@ impl Planner {
                 conv.fts_word as char, conv.fts_word as char, conv.fts_word as char
             ));
         }
+        // A job with a program states these with its passes (plan/program.rs); a one-spiral
+        // program states them where they are not today's defaults.
+        if j.program.is_none() {
+            if matches!(
+                j.output.feed_mode,
+                crate::job::FeedMode::BlockTimeS | crate::job::FeedMode::BlockTimeMin
+            ) {
+                header.lines.push(format!(
+                    "{}: the spindle turns at {} rpm; cutting time {} s",
+                    j.output.feed_mode.meaning(),
+                    j.machine.spindle_rpm,
+                    crate::field::short(
+                        (self.spiral().revolutions() * 600.0 / j.machine.spindle_rpm).round() / 10.0
+                    )
+                ));
+            }
+            if !j.part.beyond_edge.is_none() || j.strategy.overtravel_mm > 0.0 {
+                header.lines.push(j.edge_description());
+            }
+        }
         header
     }
 
@@ -257,6 +284,8 @@ impl Planner {
             csv,
             display,
             fts_table,
+            children,
+            child_stem,
             ..
         } = sinks;
         let sinks = Sinks {
@@ -265,6 +294,8 @@ impl Planner {
             display,
             z_slide: dynamics.z_slide_mm.as_deref(),
             fts_table: fts_table.map(|w| w as &mut dyn Write),
+            children: children.map(|c| c as &mut dyn ChildFiles),
+            child_stem,
         };
         let mut header = self.header();
         header.lines.extend(dynamics.report.header_lines());
@@ -293,56 +324,100 @@ impl Planner {
         progress: &mut dyn FnMut(Progress) -> ControlFlow<()>,
         header: Header,
     ) -> Result<Report, PlanError> {
+        if self.job().program.is_some() {
+            return self.run_program(sinks, progress, header);
+        }
         let mut counter = std::io::sink();
         let nc_out: &mut dyn Write = match sinks.nc {
             Some(w) => w,
             None => &mut counter,
         };
         let mut nc = NcWriter::new(nc_out, &self.job().output, &header)?;
-        let conv = self.job().output.conventions();
-        let mut csv = sinks.csv.map(|w| CsvWriter::new(w, conv)).transpose()?;
         let z_slide = sinks.z_slide;
-        let mut fts_table = match z_slide {
-            Some(_) => sinks
-                .fts_table
-                .map(|w| FtsTableWriter::new(w, conv))
-                .transpose()?,
-            None => None,
-        };
-        let mut display = sinks.display;
-        let mut stats = Stats::default();
+        let mut extras = Extras::new(self.job(), sinks.csv, sinks.fts_table, sinks.display, z_slide)?;
         self.path
             .for_each_point(Stage::Path, progress, &mut |p, folds| {
-                match z_slide.map(|z| z.get(p.index as usize)) {
+                match extras.slide(p)? {
                     None => nc.point(p)?,
-                    Some(Some(&z)) => {
-                        nc.point_split(p, z)?;
-                        if let Some(t) = fts_table.as_mut() {
-                            t.point(p, z)?;
-                        }
-                    }
-                    Some(None) => return Err(PlanError::SplitLength(p.index)),
+                    Some(z) => nc.point_split(p, z)?,
                 }
-                if let Some(csv) = csv.as_mut() {
-                    csv.point(p)?;
-                }
-                if let Some(d) = display.as_deref_mut() {
-                    d.push(p);
-                }
-                stats.add(p);
-                if folds {
-                    stats.add_loop_point(p);
-                }
-                Ok(())
+                extras.point(p, folds)
             })?;
         let nc_bytes = nc.finish()?;
-        if let Some(csv) = csv {
-            csv.finish()?;
-        }
-        if let Some(t) = fts_table {
-            t.finish()?;
-        }
+        let stats = extras.finish()?;
         let zones = self.path.concave_zones(progress)?;
         Ok(Report::new(&self.path, &stats, nc_bytes, zones))
+    }
+}
+
+/// What the finishing path streams into besides the program: the CSV, the servo's table, the
+/// display's copy and the report's figures.
+struct Extras<'a> {
+    csv: Option<CsvWriter<&'a mut dyn Write>>,
+    fts_table: Option<FtsTableWriter<&'a mut dyn Write>>,
+    display: Option<&'a mut DisplayPath>,
+    z_slide: Option<&'a [f64]>,
+    stats: Stats,
+}
+
+impl<'a> Extras<'a> {
+    fn new(
+        job: &Job,
+        csv: Option<&'a mut dyn Write>,
+        fts_table: Option<&'a mut dyn Write>,
+        display: Option<&'a mut DisplayPath>,
+        z_slide: Option<&'a [f64]>,
+    ) -> Result<Self, PlanError> {
+        let conv = job.output.conventions();
+        Ok(Self {
+            csv: csv.map(|w| CsvWriter::new(w, conv)).transpose()?,
+            fts_table: match z_slide {
+                Some(_) => fts_table
+                    .map(|w| FtsTableWriter::new(w, conv))
+                    .transpose()?,
+                None => None,
+            },
+            display,
+            z_slide,
+            stats: Stats::default(),
+        })
+    }
+
+    /// The slide's share of `p`'s height when the path is split.
+    fn slide(&self, p: &PathPoint) -> Result<Option<f64>, PlanError> {
+        match self.z_slide.map(|z| z.get(p.index as usize)) {
+            None => Ok(None),
+            Some(Some(&z)) => Ok(Some(z)),
+            Some(None) => Err(PlanError::SplitLength(p.index)),
+        }
+    }
+
+    fn point(&mut self, p: &PathPoint, folds: bool) -> Result<(), PlanError> {
+        if let Some(z) = self.slide(p)?
+            && let Some(t) = self.fts_table.as_mut()
+        {
+            t.point(p, z)?;
+        }
+        if let Some(csv) = self.csv.as_mut() {
+            csv.point(p)?;
+        }
+        if let Some(d) = self.display.as_deref_mut() {
+            d.push(p);
+        }
+        self.stats.add(p);
+        if folds {
+            self.stats.add_loop_point(p);
+        }
+        Ok(())
+    }
+
+    fn finish(self) -> Result<Stats, PlanError> {
+        if let Some(csv) = self.csv {
+            csv.finish()?;
+        }
+        if let Some(t) = self.fts_table {
+            t.finish()?;
+        }
+        Ok(self.stats)
     }
 }

@@ -168,6 +168,64 @@ impl Drop for OutputFile {
     }
 }
 
+/// The child programs of a program split past its size limit, written beside the main
+/// program as `STEM-1.nc`, `STEM-2.nc`, … (each checked like every target, through its own
+/// temporary), committed with the rest.
+pub struct ChildOutputs {
+    dir: PathBuf,
+    /// The main program's file stem.
+    pub stem: String,
+    inputs: Vec<PathBuf>,
+    files: Vec<OutputFile>,
+}
+
+impl ChildOutputs {
+    /// Children beside `main`, none of which may be one of `inputs`.
+    pub fn beside(main: &Path, inputs: Vec<PathBuf>) -> Self {
+        let dir = main.parent().filter(|d| !d.as_os_str().is_empty());
+        Self {
+            dir: dir.unwrap_or(Path::new(".")).to_path_buf(),
+            stem: main
+                .file_stem()
+                .unwrap_or_default()
+                .to_string_lossy()
+                .into_owned(),
+            inputs,
+            files: Vec::new(),
+        }
+    }
+
+    /// Renames every child into place.
+    pub fn commit(self) -> Result<(), Failure> {
+        for f in self.files {
+            f.commit()?;
+        }
+        Ok(())
+    }
+}
+
+impl spiralcam::nc::program::ChildFiles for ChildOutputs {
+    fn child(&mut self, number: usize, name: &str) -> std::io::Result<&mut dyn Write> {
+        if number > self.files.len() {
+            let path = self.dir.join(name);
+            let target = Target {
+                flag: "--nc (a child program)",
+                path: path.clone(),
+            };
+            check_targets(&[target], &self.inputs)
+                .map_err(|e| std::io::Error::other(format!("{e:?}")))?;
+            let file =
+                OutputFile::create(&path).map_err(|e| std::io::Error::other(format!("{e:?}")))?;
+            self.files.push(file);
+        }
+        let file = self
+            .files
+            .get_mut(number - 1)
+            .ok_or_else(|| std::io::Error::other(format!("child {number} out of order")))?;
+        Ok(&mut file.writer)
+    }
+}
+
 /// Creates a new file beside `target`, `.NAME.spiralcam-PID-K.partial`, exclusively.
 fn create_temp(target: &Path) -> std::io::Result<(File, PathBuf)> {
     let dir = target.parent().filter(|d| !d.as_os_str().is_empty());

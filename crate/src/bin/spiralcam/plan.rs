@@ -1,6 +1,7 @@
 //! `spiralcam plan`: admits the job, then streams its path into the files asked for.
 
-use crate::files::{OutputFile, Target, check_targets, write_file};
+use crate::files::{ChildOutputs, OutputFile, Target, check_targets, write_file};
+use spiralcam::nc::program::ChildFiles;
 use crate::{Failure, bar, read_job, run_err};
 use spiralcam::plan::{Limits, Planner, Sinks};
 use spiralcam::report::Outputs;
@@ -86,18 +87,26 @@ pub fn run(words: &[String]) -> Result<(), Failure> {
         .map_err(run_err)?;
     let create = |flag: &str| args.path(flag).map(OutputFile::create).transpose();
     let (mut nc, mut csv, mut fts) = (create("--nc")?, create("--csv")?, create("--fts-csv")?);
+    let mut children = args
+        .path("--nc")
+        .map(|main| ChildOutputs::beside(main, inputs.clone()));
     let sinks = Sinks {
         nc: nc.as_mut().map(|o| &mut o.writer as &mut dyn Write),
         csv: csv.as_mut().map(|o| &mut o.writer as &mut dyn Write),
         display: None,
         z_slide: None,
         fts_table: fts.as_mut().map(|o| &mut o.writer as &mut dyn Write),
+        child_stem: children.as_ref().map(|c| c.stem.clone()),
+        children: children.as_mut().map(|c| c as &mut dyn ChildFiles),
     };
     let planned = planner.run_with_dynamics(sinks, &mut progress);
     bar::end();
     let mut report = planned.map_err(run_err)?;
     cost.seconds = cost.seconds.map(|s| (s * 1e3).round() / 1e3);
     report.estimate = Some(cost);
+    if let Some(children) = children {
+        children.commit()?;
+    }
     for output in [nc, csv, fts].into_iter().flatten() {
         output.commit()?;
     }

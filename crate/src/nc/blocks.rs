@@ -1,0 +1,252 @@
+//! The cutting blocks of a stretch of path, as every program writes them: one linear block a
+//! point, the words in the dialect's order, the servo's word last, F from the spindle speed
+//! under `G93` (every block, or only when it changes, as the dialect does). Shared by the
+//! one-spiral program ([`super::NcWriter`]), the programs with passes ([`super::program`]) and
+//! their child programs.
+
+use super::number::{push_fixed, push_scaled, scaled};
+use super::{Axis, Conventions, NcError, Style, Words};
+use crate::job::{FeedMode, OutputSpec};
+use crate::path::PathPoint;
+
+/// Formats blocks into a line buffer.
+#[derive(Debug, Clone)]
+pub struct Blocks {
+    /// The dialect.
+    pub style: &'static Style,
+    /// Signs, wrapping, decimals.
+    pub conv: Conventions,
+    feed_mode: FeedMode,
+    decimals_f: u32,
+    max_line: usize,
+    rpm: f64,
+    last_theta: Option<f64>,
+    last_f: Option<i64>,
+    /// The line being formatted.
+    pub line: Vec<u8>,
+}
+
+impl Blocks {
+    /// Blocks of `spec`'s dialect at `rpm`.
+    pub fn new(spec: &OutputSpec, rpm: f64) -> Self {
+        Self {
+            style: spec.style(),
+            conv: spec.conventions(),
+            feed_mode: spec.feed_mode,
+            decimals_f: spec.decimals_f(),
+            max_line: spec.max_line(),
+            rpm,
+            last_theta: None,
+            last_f: None,
+            line: Vec::with_capacity(128),
+        }
+    }
+
+    /// The words of `p`, its height raised by `lift` (the stock a pass leaves), split with the
+    /// slide at `z_slide` (then raised alike) when given.
+    pub fn words(&self, p: &PathPoint, z_slide: Option<f64>, lift: f64) -> Result<Words, NcError> {
+        match z_slide {
+            None => self.conv.words(p.index, p.rho, p.theta, p.z + lift),
+            Some(s) => self
+                .conv
+                .split_words(p.index, p.rho, p.theta, p.z + lift, s + lift),
+        }
+    }
+
+    /// Starts a stretch whose first point, at angle `theta`, the approach reached: the next
+    /// block writes F whatever the last one was.
+    pub fn start(&mut self, theta: f64) {
+        self.last_theta = Some(theta);
+        self.last_f = None;
+    }
+
+    /// The next block writes F whatever the last one was (a new file).
+    pub fn restart_feed(&mut self) {
+        self.last_f = None;
+    }
+
+    /// The longest line allowed, characters.
+    pub fn max_line(&self) -> usize {
+        self.max_line
+    }
+
+    /// Whether a stretch has started.
+    pub fn started(&self) -> bool {
+        self.last_theta.is_some()
+    }
+
+    /// Formats the block that moves to `p` with words `w` into [`Blocks::line`] (cleared
+    /// first).
+    pub fn block(&mut self, p: &PathPoint, w: Words) -> Result<(), NcError> {
+        self.line.clear();
+        self.line
+            .extend_from_slice(self.style.block_prefix.as_bytes());
+        self.push_words(w);
+        if self.feed_mode.per_block() {
+            let prev = self.last_theta.unwrap_or(p.theta);
+            let dc = (p.theta - prev).abs().to_degrees();
+            let f = self.feed_mode.block_f(self.rpm, dc);
+            let units = scaled(f, self.decimals_f).ok_or(NcError::Unwritable {
+                index: p.index,
+                what: "F",
+                value: f,
+                at: Some((p.rho, p.theta)),
+            })?;
+            if self.style.feed_every_block || self.last_f != Some(units) {
+                self.line.extend_from_slice(b" F");
+                push_scaled(&mut self.line, units, self.decimals_f);
+                self.last_f = Some(units);
+            }
+        }
+        self.line.push(b'\n');
+        self.last_theta = Some(p.theta);
+        self.fits(p.index)
+    }
+
+    /// Refuses a line longer than the dialect's or the job's limit.
+    pub fn fits(&self, index: u64) -> Result<(), NcError> {
+        let n = self.line.len().saturating_sub(1);
+        if n > self.max_line {
+            return Err(NcError::LineTooLong {
+                index,
+                chars: n,
+                limit: self.max_line,
+            });
+        }
+        Ok(())
+    }
+
+    /// The X and C words of `w` in the dialect's order.
+    pub fn push_xc(&mut self, w: Words) {
+        let mut first = true;
+        for axis in self.style.words {
+            if axis == Axis::Z {
+                continue;
+            }
+            if !first {
+                self.line.push(b' ');
+            }
+            first = false;
+            self.push_word(axis, w);
+        }
+    }
+
+    /// Every word of `w` in the dialect's order, the servo's last.
+    pub fn push_words(&mut self, w: Words) {
+        for (i, axis) in self.style.words.into_iter().enumerate() {
+            if i > 0 {
+                self.line.push(b' ');
+            }
+            self.push_word(axis, w);
+        }
+        self.push_fts_word(w);
+    }
+
+    /// ` W…` when `w` is split.
+    pub fn push_fts_word(&mut self, w: Words) {
+        if let Some(units) = w.w {
+            self.line.push(b' ');
+            self.line.push(self.conv.fts_word);
+            push_scaled(&mut self.line, units, self.conv.decimals_xz);
+        }
+    }
+
+    fn push_word(&mut self, axis: Axis, w: Words) {
+        let (letter, units, d) = match axis {
+            Axis::C => (b'C', w.c, self.conv.decimals_c),
+            Axis::X => (b'X', w.x, self.conv.decimals_xz),
+            Axis::Z => (b'Z', w.z, self.conv.decimals_xz),
+        };
+        self.line.push(letter);
+        push_scaled(&mut self.line, units, d);
+    }
+
+    /// `Z` and the height `z` mm (signed by the conventions).
+    pub fn push_z(&mut self, z: f64) -> Result<(), NcError> {
+        let units = self.conv.z_units(u64::MAX, z)?;
+        self.line.push(b'Z');
+        push_scaled(&mut self.line, units, self.conv.decimals_xz);
+        Ok(())
+    }
+
+    /// ` F` and a feed in mm/min.
+    pub fn push_feed(&mut self, mm_per_min: f64) {
+        self.line.extend_from_slice(b" F");
+        push_fixed(&mut self.line, mm_per_min, 3);
+    }
+
+    /// The line that sets the cutting feed mode after an approach: `G93`, or the `F` of
+    /// per-minute feed.
+    pub fn push_cutting_mode(&mut self, feed_mm_per_min: f64) {
+        match self.feed_mode {
+            FeedMode::PerMinute => {
+                self.line.push(b'F');
+                push_fixed(&mut self.line, feed_mm_per_min, 3);
+                self.line.push(b'\n');
+            }
+            _ => self.line.extend_from_slice(b"G93\n"),
+        }
+    }
+
+    /// The feed mode.
+    pub fn feed_mode(&self) -> FeedMode {
+        self.feed_mode
+    }
+}
+
+/// `text` as comment lines `( … )` of at most `max` characters, broken between words (a word
+/// longer than a line is cut), plain ASCII ([`super::ascii_comment`]).
+pub fn comment_lines(text: &str, max: usize) -> Vec<String> {
+    let text = super::ascii_comment(text);
+    let room = max.saturating_sub(2).max(8);
+    let mut out = Vec::new();
+    let mut line = String::new();
+    for word in text.split_whitespace() {
+        let mut word = word;
+        loop {
+            let sep = usize::from(!line.is_empty());
+            if line.len() + sep + word.len() <= room {
+                if sep == 1 {
+                    line.push(' ');
+                }
+                line.push_str(word);
+                break;
+            }
+            if !line.is_empty() {
+                out.push(std::mem::take(&mut line));
+                continue;
+            }
+            let (head, tail) = word.split_at(room.min(word.len()));
+            out.push(head.to_string());
+            word = tail;
+            if word.is_empty() {
+                break;
+            }
+        }
+    }
+    if !line.is_empty() || out.is_empty() {
+        out.push(line);
+    }
+    out.into_iter().map(|l| format!("({l})")).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn long_comments_wrap_between_words() {
+        let text = "surface: composite of an asphere and lenslets ".repeat(10);
+        let lines = comment_lines(&text, 60);
+        assert!(lines.len() > 5);
+        assert!(lines.iter().all(|l| l.len() <= 60 && l.starts_with('(') && l.ends_with(')')));
+        let joined: Vec<&str> = lines.iter().map(|l| &l[1..l.len() - 1]).collect();
+        assert_eq!(joined.join(" "), text.trim_end());
+        // A word longer than a line is cut.
+        let long = "x".repeat(130);
+        let lines = comment_lines(&long, 50);
+        assert!(lines.iter().all(|l| l.len() <= 50), "{lines:?}");
+        assert_eq!(lines.iter().map(|l| l.len() - 2).sum::<usize>(), 130);
+        assert_eq!(comment_lines("short", 50), ["(short)"]);
+    }
+}

@@ -124,6 +124,19 @@ function showReport(report, job) {
     ['Arc-end contacts', fmt(report.arc_end_contacts, 0)],
     ['Unreachable zones', `${report.concave_zones.length}${report.shallow_concave_zones ? ` (+${report.shallow_concave_zones} below 0.1 nm)` : ''}`],
   ];
+  if (report.part_edge) rows.push(['Part edge', report.part_edge]);
+  const program = report.program;
+  if (program) {
+    const time = program.passes.reduce((t, p) => t + p.cutting_time_s, 0);
+    rows.push(
+      ['Passes', `${program.passes.length} (${program.loop_kind === 'controller' ? 'repeated by the controller' : 'written out'}), stock ${fmt(program.stock_mm * 1000, 4)} µm, cutting ${duration(time)}`],
+      ['Safe Z', `${fmt(program.safe_z_mm, 6)} mm`],
+    );
+    if (program.children.length) {
+      const total = program.children.reduce((t, c) => t + c.bytes, 0);
+      rows.push(['Child programs', `${program.children.length} (${bytes(total)}): ${program.children[0].name} … ${program.children[program.children.length - 1].name}; downloaded as one zip with the main program`]);
+    }
+  }
   if (job.strategy.compensation === 'two_way') {
     const loopAt = report.first_two_way_loop_at;
     rows.push(
@@ -403,7 +416,7 @@ function showAnalysis(m, stops) {
 }
 
 /** The colour legend beside the view. */
-function showLegend(zMin, zMax, exaggeration, revolutionStep) {
+function showLegend(zMin, zMax, exaggeration, revolutionStep, passNote = '') {
   const ticks = $('legend-ticks');
   const n = 5;
   ticks.replaceChildren(...Array.from({ length: n }, (_, i) => {
@@ -411,14 +424,42 @@ function showLegend(zMin, zMax, exaggeration, revolutionStep) {
     return Object.assign(document.createElement('span'), { textContent: `${fmt(z * 1000, 3)} µm` });
   }));
   $('exaggeration').textContent = `Z × ${fmt(exaggeration, 1)}`;
-  $('path-note').textContent = revolutionStep > 1 ? `path: every ${revolutionStep}th revolution shown` : 'path: every revolution shown';
+  $('path-note').textContent = (revolutionStep > 1 ? `path: every ${revolutionStep}th revolution shown` : 'path: every revolution shown') + passNote;
+}
+
+/** Most passes drawn in the 3-D view. */
+const MAX_PASSES_DRAWN = 8;
+
+/** The path drawn once for each pass of a program, raised by the stock the pass leaves (the
+ * first and last pass of every group, at most `MAX_PASSES_DRAWN`), and a note saying which. */
+function passPaths(path, program) {
+  const stocks = [];
+  (program?.passes ?? []).forEach((p, i, all) => {
+    const edge = i === 0 || i === all.length - 1 || all[i - 1].group !== p.group || all[i + 1].group !== p.group;
+    if (edge && p.stock_left_mm > 0 && !stocks.includes(p.stock_left_mm)) stocks.push(p.stock_left_mm);
+  });
+  if (!stocks.length) return { path, note: '' };
+  const drawn = stocks.slice(0, MAX_PASSES_DRAWN - 1);
+  const out = new Float32Array(path.length * (drawn.length + 1));
+  out.set(path);
+  drawn.forEach((stock, k) => {
+    const copy = out.subarray(path.length * (k + 1), path.length * (k + 2));
+    copy.set(path);
+    for (let i = 2; i < copy.length; i += 3) copy[i] += stock;
+  });
+  const list = drawn.map((s) => fmt(s * 1000, 3)).join(', ');
+  return { path: out, note: `; passes drawn raised by their stock left (${list} µm) above the finishing pass` };
 }
 
 /** The download buttons say what each file will weigh before it is made: the program's size
  * from the plan, the tables' from the estimate the plan was admitted on. */
 function labelDownloads(report) {
   const e = report.estimate ?? {};
-  $('download-nc').textContent = `Download NC (${bytes(report.nc_bytes)})`;
+  const children = report.program?.children ?? [];
+  const all = children.reduce((t, c) => t + c.bytes, report.nc_bytes);
+  $('download-nc').textContent = children.length
+    ? `Download NC zip (main + ${children.length} children, ${bytes(all)} before compression)`
+    : `Download NC (${bytes(report.nc_bytes)})`;
   $('download-csv').textContent = `Download CSV (about ${bytes(e.csv_bytes)})`;
   $('download-fts').textContent = `Download FTS table (about ${bytes(e.fts_table_bytes)})`;
 }
@@ -569,8 +610,9 @@ async function main() {
       $('plan-time').textContent = `planned in ${fmt((performance.now() - started) / 1000, 2)} s`;
       if (viewer) {
         viewer.set_surface(m.positions, m.normals, m.indices, m.zMin, m.zMax);
-        viewer.set_path(m.path);
-        showLegend(m.zMin, m.zMax, viewer.z_exaggeration(), m.revolutionStep);
+        const drawn = passPaths(m.path, m.report.program);
+        viewer.set_path(drawn.path);
+        showLegend(m.zMin, m.zMax, viewer.z_exaggeration(), m.revolutionStep, drawn.note);
         redraw();
       }
       setState('done');
@@ -595,8 +637,9 @@ async function main() {
     busy(true);
     try {
       const m = await worker.run(kind, planned.job);
-      const name = { nc: planned.names.nc, csv: planned.names.csv, fts: `${planned.job.name}-fts.csv` }[kind];
-      download(name, m.bytes, kind === 'nc' ? 'text/plain' : 'text/csv');
+      const zipped = kind === 'nc' && (status.report?.program?.children?.length ?? 0) > 0;
+      const name = zipped ? `${planned.job.name}.zip` : { nc: planned.names.nc, csv: planned.names.csv, fts: `${planned.job.name}-fts.csv` }[kind];
+      download(name, m.bytes, zipped ? 'application/zip' : kind === 'nc' ? 'text/plain' : 'text/csv');
     } catch (e) {
       if (!e.cancelled) showFailure(e);
     } finally {

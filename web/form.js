@@ -317,6 +317,7 @@ const SECTIONS = [
   ['Job', [{ path: 'name', label: 'Name', text: true, hint: 'letters, digits, - _ .' }]],
   ['Part', [
     { path: 'part.diameter_mm', label: 'Diameter', unit: 'mm', hint: '> 0' },
+    { path: 'part.beyond_edge', label: 'Beyond the edge', options: ['', 'surface'], optionLabels: ['no material (the nose\'s arc is cut at the edge)', 'the design continues'], optional: true, hint: 'what the nose meets beyond part.diameter_mm / 2' },
     { path: 'part.normal_axis_at_mm', label: 'Spindle axis: normal at x, y', unit: 'mm', hint: 'blank: the design\'s Z; "x, y": the part turned about the design\'s normal there (paper 001)', optional: true, list: true },
   ]],
   ['Tool', [
@@ -348,6 +349,7 @@ const SECTIONS = [
     { path: 'strategy.compensation', label: 'Nose compensation', options: ['one_way', 'two_way'], optionLabels: ['one-way (Z only; X on the spiral)', 'two-way (along the normal; X moves)'] },
     { path: 'strategy.start_angle_deg', label: 'Start angle', unit: '°' },
     { path: 'strategy.outer_radius_mm', label: 'Outer radius', unit: 'mm', hint: 'blank: part radius', optional: true },
+    { path: 'strategy.overtravel_mm', label: 'Overtravel', unit: 'mm', hint: '≥ 0: the spiral starts this far outside the part; blank: 0', optional: true },
     {
       path: 'strategy.split.type', label: 'Split Z / W', role: 'split', options: ['', 'symmetric', 'low_pass', 'auto'],
       optionLabels: ['none (Z alone)', 'symmetric part on Z (paper 002)', 'low-pass at a cutoff (paper 000)', 'automatic (lowest cutoff the stroke allows)'],
@@ -363,16 +365,40 @@ const SECTIONS = [
     { path: 'output.z_sign', label: 'Sign of Z', options: ['', '1', '-1'], optionLabels: ['dialect default', '+1', '−1'], optional: true, numeric: true },
     { path: 'output.c_sign', label: 'Direction of C', options: ['', '1', '-1'], optionLabels: ['dialect default', '+1', '−1'], optional: true, numeric: true },
     { path: 'output.wrap_c', label: 'Wrap C to [0, 360)', options: ['', 'true', 'false'], optionLabels: ['dialect default', 'yes', 'no'], optional: true, boolean: true },
-    { path: 'output.feed_mode', label: 'Feed', options: ['inverse_time', 'per_minute'], optionLabels: ['G93 inverse time', 'G94 per minute'] },
+    { path: 'output.feed_mode', label: 'Feed', options: ['inverse_time', 'block_time_s', 'block_time_min', 'per_minute'], optionLabels: ['G93 F = 1/block time in min (RS274, LinuxCNC)', 'G93 F = block time in s (TwinCAT; lab Moore programs)', 'G93 F = block time in min', 'G94 per minute'], hint: 'what G93\'s F means on your controller: check its manual; the header states the spindle speed either way' },
+    { path: 'output.decimals_f', label: 'Decimals F', unit: '', hint: '0 … 9; blank: 3 (6 for block times)', optional: true },
+    { path: 'output.max_line_chars', label: 'Longest line', unit: 'chars', hint: '≥ 40; blank: the dialect\'s (ISO 252, Moore and Precitech 128)', optional: true },
     { path: 'output.feed_mm_per_min', label: 'Feed (G94)', unit: 'mm/min', optional: true },
     { path: 'output.plunge_feed_mm_per_min', label: 'Plunge feed', unit: 'mm/min' },
     { path: 'output.clearance_mm', label: 'Clearance', unit: 'mm', hint: '≥ 0' },
     {
-      path: 'output.fts_word', label: 'Servo word', options: ['', 'W', 'U', 'V', 'A', 'B', 'Y'], optionLabels: ['W (default)', 'W', 'U', 'V', 'A', 'B', 'Y'],
+      path: 'output.fts_word', label: 'Servo word', options: ['', 'W', 'U', 'V', 'A', 'B', 'Y'], optionLabels: ['dialect default (ISO Y, others W)', 'W', 'U', 'V', 'A', 'B', 'Y'],
       optional: true, hint: 'the fast tool servo\'s word in split programs', whenField: 'strategy.split.type', when: 'symmetric low_pass auto',
     },
   ]],
+  ['Program', [
+    { path: 'program', label: 'Program', role: 'program', options: ['', 'set'], optionLabels: ['one spiral', 'set-up, passes, loop, child programs'], hint: 'the program an operator runs as written (crate/docs/job-format.md, "The program section")' },
+    ...[
+      { path: 'program.work_offset', label: 'Work offset', options: ['', 'G54', 'G55', 'G56', 'G57', 'G58', 'G59'], optionLabels: ['none', 'G54', 'G55', 'G56', 'G57', 'G58', 'G59'], optional: true },
+      { path: 'program.tool', label: 'Tool word', text: true, optional: true, hint: 'T and 1 to 8 digits, e.g. T0303; blank: none' },
+      { path: 'program.c_axis_on', label: 'C-axis mode on', text: true, optional: true, hint: 'an M word, e.g. M26.1; blank: none' },
+      { path: 'program.c_axis_off', label: 'C-axis mode off', text: true, optional: true, hint: 'an M word, e.g. M29; blank: none' },
+      { path: 'program.safe_z_mm', label: 'Safe Z', unit: 'mm', optional: true, hint: 'start and end height; blank: the path\'s top + stock + clearance' },
+      { path: 'program.retract_height_mm', label: 'Retract height', unit: 'mm', optional: true, hint: 'between passes, in the pass\'s frame; blank: the path\'s top + clearance' },
+      { path: 'program.approach', label: 'Approach (JSON list)', json: true, rows: 3, hint: '[{"height_mm": h, "feed_mm_per_min": f}, …]: heights above the first point, decreasing; then the plunge feed' },
+      { path: 'program.passes', label: 'Passes (JSON list)', json: true, rows: 4, hint: '[{"count": n, "depth_of_cut_um": d, "feed_mm_per_rev"?: f, "spindle_rpm"?: s}, …] cut in order; the last pass cuts the design' },
+      { path: 'program.loop', label: 'Passes written', options: ['unrolled', 'controller'], optionLabels: ['every pass written out', 'one body repeated by the controller (G52 shift)'] },
+      { path: 'program.max_program_bytes', label: 'Largest program file', unit: 'bytes', optional: true, hint: '≥ 4096; past it, child programs called by the main one (one zip download); blank: one file' },
+    ].map((f) => ({ ...f, whenField: 'program', when: 'set' })),
+  ]],
 ];
+
+/** The program section a user switches on: a roughing group and a finishing pass. */
+const DEFAULT_PROGRAM = {
+  approach: [{ height_mm: 1, feed_mm_per_min: 500 }, { height_mm: 0.1, feed_mm_per_min: 20 }],
+  passes: [{ count: 2, depth_of_cut_um: 5 }, { count: 1, depth_of_cut_um: 2 }],
+  loop: 'unrolled',
+};
 
 /** The three limits of a slide (`machine.<key>`): all three blank = not checked. */
 function slideFields(key, name) {
@@ -514,9 +540,12 @@ export class JobForm {
     if (f.role === 'machine-preset') return this.machinePresetRow(f);
     const value = get(this.job, f.path);
     let control;
-    if (f.role === 'fts') {
+    if (f.role === 'fts' || f.role === 'program') {
       control = select(f.options, f.optionLabels);
       control.value = value ? 'set' : '';
+    } else if (f.json) {
+      control = el('textarea', { rows: f.rows || 4, spellcheck: false, class: 'json' });
+      control.value = JSON.stringify(value ?? [], null, 1).replace(/\n\s*/g, ' ');
     } else if (f.options) {
       control = select(f.options, f.optionLabels);
       control.value = value === undefined ? '' : String(value);
@@ -524,11 +553,11 @@ export class JobForm {
       control = el('input', { type: 'text', inputMode: f.text ? 'text' : 'decimal', spellcheck: false });
       control.value = value === undefined || value === null ? '' : Array.isArray(value) ? value.join(', ') : String(value);
     }
-    control.dataset.kind = f.options ? (f.boolean ? 'bool' : f.numeric ? 'sign' : 'choice') : f.text ? 'text' : f.list ? 'list' : 'number';
+    control.dataset.kind = f.options ? (f.boolean ? 'bool' : f.numeric ? 'sign' : 'choice') : f.json ? 'json' : f.text ? 'text' : f.list ? 'list' : 'number';
     if (f.optional) control.dataset.optional = '1';
     if (f.role) control.dataset.role = f.role;
     if (f.group) control.dataset.group = f.group;
-    const r = row(f.path, f.label, control, f.unit, f.hint);
+    const r = f.json ? wide(row(f.path, f.label, control, f.unit, f.hint)) : row(f.path, f.label, control, f.unit, f.hint);
     if (f.when) r.dataset.when = f.when;
     if (f.whenField) r.dataset.whenField = f.whenField;
     return r;
@@ -753,6 +782,13 @@ export class JobForm {
         delete this.job.machine.fts;
       }
       this.show(this.job);
+    } else if (t.dataset.role === 'program') {
+      if (t.value) this.job.program = structuredClone(this.lastProgram || DEFAULT_PROGRAM);
+      else {
+        if (this.job.program) this.lastProgram = this.job.program;
+        delete this.job.program;
+      }
+      this.show(this.job);
     } else if (t.dataset.role === 'split') {
       const cutoff = this.job.strategy.split?.cutoff_hz ?? this.job.machine.z_slide?.bandwidth_hz ?? 20;
       if (!t.value) delete this.job.strategy.split;
@@ -808,7 +844,7 @@ export class JobForm {
   read(t) {
     const path = t.dataset.field;
     switch (t.dataset.kind) {
-      case 'text': set(this.job, path, t.value); break;
+      case 'text': set(this.job, path, t.dataset.optional && t.value.trim() === '' ? undefined : t.value); break;
       case 'choice': set(this.job, path, t.dataset.optional && t.value === '' ? undefined : t.value); break;
       case 'sign': set(this.job, path, t.value === '' ? undefined : Number(t.value)); break;
       case 'bool': set(this.job, path, t.value === '' ? undefined : t.value === 'true'); break;

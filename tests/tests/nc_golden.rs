@@ -36,7 +36,7 @@ fn planner(name: &str) -> Planner {
 fn run(p: &Planner) -> (Vec<u8>, Vec<u8>) {
     let (mut nc, mut csv) = (Vec::new(), Vec::new());
     let report = p
-        .run(
+        .run_with_dynamics(
             Sinks {
                 nc: Some(&mut nc),
                 csv: Some(&mut csv),
@@ -111,6 +111,49 @@ fn moore_program_matches_its_golden_file() {
 #[test]
 fn precitech_program_matches_its_golden_file() {
     check_golden("golden-precitech");
+}
+
+#[test]
+fn iso_program_with_passes_matches_its_golden_file() {
+    check_golden("golden-program-iso");
+}
+
+#[test]
+fn moore_program_with_passes_matches_its_golden_file() {
+    check_golden("golden-program-moore");
+}
+
+#[test]
+fn precitech_program_with_passes_matches_its_golden_file() {
+    check_golden("golden-program-precitech");
+}
+
+#[test]
+fn the_golden_programs_cover_loops_groups_and_a_split() {
+    use spiralcam::job::LoopKind;
+    let jobs: Vec<Job> = [
+        "golden-program-iso",
+        "golden-program-moore",
+        "golden-program-precitech",
+    ]
+    .iter()
+    .map(|n| planner(n).job().clone())
+    .collect();
+    let loops: Vec<LoopKind> = jobs
+        .iter()
+        .map(|j| j.program.as_ref().unwrap().loop_kind)
+        .collect();
+    assert_eq!(
+        loops,
+        [
+            LoopKind::Controller,
+            LoopKind::Unrolled,
+            LoopKind::Controller
+        ]
+    );
+    assert!(jobs[0].strategy.split.is_some());
+    assert!(jobs[2].program.as_ref().unwrap().has_own_spirals());
+    assert_eq!(jobs[1].output.feed_mode, FeedMode::BlockTimeS);
 }
 
 #[test]

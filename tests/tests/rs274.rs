@@ -15,7 +15,8 @@ mod common;
 use common::half_unit;
 use spiralcam::job::Job;
 use spiralcam::path::PathPoint;
-use spiralcam::plan::{Planner, Sinks};
+use spiralcam::plan::{PlanError, Planner, Sinks};
+use spiralcam::progress::Stage;
 use std::ops::ControlFlow;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -43,8 +44,14 @@ fn interpret(path: &Path) -> String {
         );
     }
     let home = path.parent().expect("program in a directory");
+    // A tool table with the tool the programs' T words name (T0303), so rs274 accepts them.
+    let table = home.join("tools.tbl");
+    std::fs::write(&table, "T303 P3 Z0 D0.1 ;diamond\n").unwrap();
     let out = Command::new(RS274)
         .env("HOME", home)
+        .current_dir(home)
+        .arg("-t")
+        .arg(&table)
         .arg("-g")
         .arg(path)
         .output()
@@ -322,4 +329,178 @@ fn a_split_program_reads_back_with_the_servo_word() {
         );
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The moves of rs274's output in order, each with the machine position (the canon position
+/// plus the G92/G52 offset in force: canon calls are in the program's frame) and the feed
+/// rate in force.
+fn machine_feeds(stdout: &str) -> Vec<([f64; 6], f64)> {
+    let (mut offset, mut rate) = ([0.0; 6], 0.0);
+    let mut out = Vec::new();
+    for line in stdout.lines() {
+        let args = |name: &str| -> Option<Vec<f64>> {
+            let start = line.find(&format!("{name}("))? + name.len() + 1;
+            let end = line[start..].find(')')? + start;
+            Some(
+                line[start..end]
+                    .split(',')
+                    .map(|v| v.trim().parse().unwrap())
+                    .collect(),
+            )
+        };
+        if let Some(a) = args("SET_G92_OFFSET") {
+            offset.copy_from_slice(&a[..6]);
+        } else if let Some(a) = args("SET_FEED_RATE") {
+            rate = a[0];
+        } else if let Some(a) = args("STRAIGHT_FEED") {
+            let mut m = [0.0; 6];
+            for k in 0..6 {
+                m[k] = a[k] + offset[k];
+            }
+            out.push((m, rate));
+        }
+    }
+    out
+}
+
+/// A program with passes in a controller loop (ISO: `o100 repeat`, `#<stock>`, `G52 Z`), a
+/// staged approach and a split, read back by rs274: every pass's feeds cut the design raised by
+/// the stock left after it (Z + Y, the slide's and the servo's shares, to the printed
+/// precision), and each approach's feeds come in order at their heights above the first point.
+#[test]
+fn a_program_with_passes_in_a_controller_loop_reads_back() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("golden/golden-program-iso.json");
+    let job = Job::from_json(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let planner = Planner::new(&job).unwrap();
+    let pts: Vec<PathPoint> = planner.points().map(|p| p.unwrap()).collect();
+    let mut nc = Vec::new();
+    planner
+        .run_with_dynamics(
+            Sinks {
+                nc: Some(&mut nc),
+                ..Default::default()
+            },
+            &mut |_| ControlFlow::Continue(()),
+        )
+        .unwrap();
+    let dir = scratch("passes");
+    let file = dir.join("passes.ngc");
+    std::fs::write(&file, &nc).unwrap();
+    let feeds = machine_feeds(&interpret(&file));
+    let spec = job.program.as_ref().unwrap();
+    let passes = spec.pass_list();
+    let steps = spec.approach.len() + 1;
+    assert_eq!(feeds.len(), passes.len() * (steps + pts.len() - 1));
+    let tol = PRINTED + 2.0 * half_unit(job.output.decimals_xz);
+    for (k, pass) in passes.iter().enumerate() {
+        let body = &feeds[k * (steps + pts.len() - 1)..][..steps + pts.len() - 1];
+        // The approach: each step at its feed, the plunge at the plunge feed, onto point 0.
+        let z0 = pts[0].z + pass.stock_mm;
+        for (s, step) in spec.approach.iter().enumerate() {
+            assert!(
+                (body[s].0[2] - (z0 + step.height_mm)).abs() <= tol,
+                "pass {k}: {:?}",
+                body[s]
+            );
+            assert_eq!(body[s].1, step.feed_mm_per_min, "pass {k}, step {s}");
+        }
+        let plunge = &body[steps - 1];
+        assert_eq!(plunge.1, job.output.plunge_feed_mm_per_min);
+        // Z and Y are each printed to 4 decimals: their sum is within twice that.
+        let sum_tol = tol + PRINTED;
+        assert!(
+            (plunge.0[2] + plunge.0[1] - z0).abs() <= sum_tol,
+            "pass {k}: plunge {plunge:?}"
+        );
+        // The cut: Z + Y (slide + servo) is the design raised by the stock.
+        for (f, p) in body[steps..].iter().zip(&pts[1..]) {
+            let z = f.0[2] + f.0[1];
+            assert!(
+                (z - (p.z + pass.stock_mm)).abs() <= sum_tol,
+                "pass {k}: {f:?} vs z {} + stock {}",
+                p.z,
+                pass.stock_mm
+            );
+            assert!((f.0[0] - p.rho).abs() <= tol && (f.0[5] - p.theta.to_degrees()).abs() <= 1e-4);
+        }
+    }
+    // The stock left after each pass: 0.006, 0.001, 0 mm.
+    let stock: Vec<f64> = passes.iter().map(|p| p.stock_mm).collect();
+    assert!(
+        (stock[0] - 0.006).abs() < 1e-12 && (stock[1] - 0.001).abs() < 1e-12 && stock[2] == 0.0
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `job` with at most about 20 revolutions of at most 90 points (a few thousand points, so that
+/// the debug build plans even the scattered example in seconds).
+fn coarsen(job: &mut spiralcam::job::Job) {
+    use spiralcam::job::Sampling;
+    let radius = job.outer_radius_mm();
+    let feed = &mut job.strategy.feed_mm_per_rev;
+    *feed = feed.max(radius / 20.0).min(radius);
+    match &mut job.strategy.sampling {
+        Sampling::ConstantAngle { points_per_rev } => *points_per_rev = (*points_per_rev).min(90),
+        Sampling::ConstantArc { arc_length_mm, .. } => {
+            *arc_length_mm = arc_length_mm.max(std::f64::consts::TAU * radius / 90.0)
+        }
+        _ => {}
+    }
+}
+
+/// Every example job's ISO program (coarsened to a few thousand points, planned as the command
+/// line does, with the machine dynamics and a split where the job has them) is read by rs274
+/// without an error and makes one feed per point; no line is longer than LinuxCNC reads (252
+/// characters: rs274 refuses 253 and more as "Command too long").
+#[test]
+fn every_example_job_reads_back() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../crate/jobs");
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".json"))
+        .collect();
+    names.sort();
+    for name in names {
+        let mut job = common::example_job(&name);
+        job.output.dialect = spiralcam::job::Dialect::Iso;
+        job.output.wrap_c = None;
+        job.output.x_sign = None;
+        coarsen(&mut job);
+        let planner = Planner::new(&job).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let mut nc = Vec::new();
+        // The program is whole when the concave-zone report starts: stop there (the report
+        // is not what this test reads, and it takes minutes on the scattered example in a
+        // debug build).
+        let result = planner.run_with_dynamics(
+            Sinks {
+                nc: Some(&mut nc),
+                ..Default::default()
+            },
+            &mut |p| match p.stage {
+                Stage::Zones => ControlFlow::Break(()),
+                _ => ControlFlow::Continue(()),
+            },
+        );
+        match result {
+            Ok(_) | Err(PlanError::Cancelled) => {}
+            Err(e) => panic!("{name}: {e}"),
+        }
+        let points = planner.points().count() as u64;
+        let text = String::from_utf8(nc).unwrap();
+        let longest = text.lines().map(str::len).max().unwrap_or(0);
+        assert!(longest <= 252, "{name}: a line of {longest} characters");
+        let folder = scratch(&format!("example-{}", name.trim_end_matches(".json")));
+        let file = folder.join("program.ngc");
+        std::fs::write(&file, &text).unwrap();
+        let feeds = machine_feeds(&interpret(&file));
+        assert_eq!(feeds.len() as u64, points, "{name}: one feed per point");
+        if job.strategy.split.is_some() {
+            assert!(
+                feeds.iter().any(|f| f.0[1] != 0.0),
+                "{name}: the servo (Y) moves"
+            );
+        }
+        let _ = std::fs::remove_dir_all(&folder);
+    }
 }

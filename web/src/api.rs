@@ -15,6 +15,7 @@ use spiralcam::analysis::Analysis;
 use spiralcam::analysis::power_map::PowerMap;
 use spiralcam::display::{DisplayPath, SurfaceMesh};
 use spiralcam::job::Job;
+use spiralcam::nc::program::ChildFiles;
 use spiralcam::plan::{Limits, Planner, Sinks};
 use spiralcam::progress::Progress;
 use spiralcam::raster::Raster;
@@ -170,30 +171,42 @@ pub fn plan(job: JsValue, progress: &js_sys::Function) -> Result<Planned, JsErro
     })
 }
 
-/// The NC program of `job`, byte for byte what `spiralcam plan JOB --nc FILE` writes.
+/// The NC program of `job`, byte for byte what `spiralcam plan JOB --nc FILE` writes; for a
+/// program split into child programs (`program.max_program_bytes`), a zip of the main program
+/// (`NAME.nc`) and its children (`NAME-1.nc`, … as the command line names them beside it).
 #[wasm_bindgen]
 pub fn nc_program(job: JsValue, progress: &js_sys::Function) -> Result<Vec<u8>, JsError> {
-    let outputs = Outputs {
-        nc: true,
-        ..Outputs::default()
-    };
-    output_file(job, progress, outputs, |out| Sinks {
-        nc: Some(out),
-        ..Default::default()
-    })
+    let mut children = ChildBuffers::default();
+    let (main, name) = output_file(job, progress, Download::Nc, Some(&mut children))?;
+    if children.0.is_empty() {
+        return Ok(main);
+    }
+    let mut files = vec![(name, main)];
+    files.extend(children.0);
+    crate::bundle::zip_files(&files).map_err(|e| JsError::new(&e))
+}
+
+/// Child programs kept in memory for the zip, in the order they are first written.
+#[derive(Default)]
+struct ChildBuffers(Vec<crate::bundle::NamedFile>);
+
+impl ChildFiles for ChildBuffers {
+    fn child(&mut self, number: usize, name: &str) -> std::io::Result<&mut dyn std::io::Write> {
+        if number > self.0.len() {
+            self.0.push((name.to_string(), Vec::new()));
+        }
+        let (_, bytes) = self
+            .0
+            .get_mut(number - 1)
+            .ok_or_else(|| std::io::Error::other(format!("child {number} out of order")))?;
+        Ok(bytes)
+    }
 }
 
 /// The CSV table of `job`, byte for byte what `spiralcam plan JOB --csv FILE` writes.
 #[wasm_bindgen]
 pub fn csv_table(job: JsValue, progress: &js_sys::Function) -> Result<Vec<u8>, JsError> {
-    let outputs = Outputs {
-        csv: true,
-        ..Outputs::default()
-    };
-    output_file(job, progress, outputs, |out| Sinks {
-        csv: Some(out),
-        ..Default::default()
-    })
+    Ok(output_file(job, progress, Download::Csv, None)?.0)
 }
 
 /// The example machines (`spiralcam::job::machine::presets`) as JSON: a list of objects with `key`,
@@ -208,14 +221,7 @@ pub fn machine_presets() -> String {
 /// `spiralcam plan JOB --fts-csv FILE` writes.
 #[wasm_bindgen]
 pub fn fts_table(job: JsValue, progress: &js_sys::Function) -> Result<Vec<u8>, JsError> {
-    let outputs = Outputs {
-        fts_table: true,
-        ..Outputs::default()
-    };
-    output_file(job, progress, outputs, |out| Sinks {
-        fts_table: Some(out),
-        ..Default::default()
-    })
+    Ok(output_file(job, progress, Download::FtsTable, None)?.0)
 }
 
 /// The most bytes a download is built from, in the page's memory (the command line writes any
@@ -242,21 +248,51 @@ fn admit(planner: &Planner, outputs: Outputs) -> Result<Cost, JsError> {
     Ok(cost)
 }
 
-/// Plans `job` into the one sink that `sinks` makes of a byte buffer, and returns the bytes.
+/// A file the page downloads.
+#[derive(Clone, Copy)]
+enum Download {
+    Nc,
+    Csv,
+    FtsTable,
+}
+
+/// Plans `job` into a byte buffer as the `download` file (child programs into `children`);
+/// returns the bytes and the file's name as the command line would write it.
 fn output_file(
     job: JsValue,
     progress: &js_sys::Function,
-    outputs: Outputs,
-    sinks: impl FnOnce(&mut Vec<u8>) -> Sinks<'_>,
-) -> Result<Vec<u8>, JsError> {
+    download: Download,
+    children: Option<&mut dyn ChildFiles>,
+) -> Result<(Vec<u8>, String), JsError> {
     let planner = read_job(job, progress)?;
+    let outputs = Outputs {
+        nc: matches!(download, Download::Nc),
+        csv: matches!(download, Download::Csv),
+        fts_table: matches!(download, Download::FtsTable),
+    };
     let cost = admit(&planner, outputs)?;
+    let job = planner.job();
+    let name = match download {
+        Download::Nc => format!("{}.{}", job.name, job.output.style().extension),
+        Download::Csv => format!("{}.csv", job.name),
+        Download::FtsTable => format!("{}-fts.csv", job.name),
+    };
     // Room for the whole file at once: growing by doubling would hold it twice.
     let mut out = Vec::with_capacity((cost.output_bytes(outputs) as f64 * 1.02) as usize + 4096);
+    let mut sinks = Sinks {
+        // The trait object's lifetime shortened to the buffer's.
+        children: children.map(|c| c as &mut dyn ChildFiles),
+        ..Default::default()
+    };
+    match download {
+        Download::Nc => sinks.nc = Some(&mut out),
+        Download::Csv => sinks.csv = Some(&mut out),
+        Download::FtsTable => sinks.fts_table = Some(&mut out),
+    }
     planner
-        .run_with_dynamics(sinks(&mut out), &mut reporter(progress))
+        .run_with_dynamics(sinks, &mut reporter(progress))
         .map_err(|e| JsError::new(&e.to_string()))?;
-    Ok(out)
+    Ok((out, name))
 }
 
 /// The accuracy analysis of a job's path, for the page's accuracy panel.

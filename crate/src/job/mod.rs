@@ -359,7 +359,10 @@ impl Job {
         if let Some(program) = &self.program {
             program.validate().map_err(|e| e.within("program"))?;
             if self.output.dialect == Dialect::Iso {
-                for (field, m) in [("c_axis_on", &program.c_axis_on), ("c_axis_off", &program.c_axis_off)] {
+                for (field, m) in [
+                    ("c_axis_on", &program.c_axis_on),
+                    ("c_axis_off", &program.c_axis_off),
+                ] {
                     if let Some(m) = m.as_ref().filter(|m| m.contains('.')) {
                         return Err(FieldError::new(
                             format!("program.{field}"),

@@ -116,7 +116,8 @@ pub struct OutputSpec {
     /// default `Y` for ISO (a linear axis LinuxCNC's interpreter always reads), `W` otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fts_word: Option<String>,
-    /// Longest line, characters (≥ 40); default the dialect's (ISO 255, LinuxCNC's limit;
+    /// Longest line, characters (≥ 40); default the dialect's (ISO 252: LinuxCNC's rs274 refuses
+    /// lines of 253 characters and more;
     /// Moore and Precitech styles 128). Longer comments are wrapped over several lines; a block
     /// longer than this is an error.
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -52,8 +52,13 @@ pub struct ProgramSpec {
     /// (default): straight from the retract height at the plunge feed.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub approach: Vec<ApproachStep>,
-    /// The passes, cut in order; default one pass cutting the design.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    /// The passes, cut in order; default (absent) one pass cutting the design. A list given
+    /// empty is refused.
+    #[serde(
+        default,
+        skip_serializing_if = "Vec::is_empty",
+        deserialize_with = "non_empty"
+    )]
     pub passes: Vec<PassGroup>,
     /// `unrolled` (default: every pass written out, its Z raised by its stock) or
     /// `controller` (one pass body per group that the controller repeats, the stock kept in a
@@ -170,7 +175,10 @@ impl ProgramSpec {
                 ));
             }
         }
-        for (field, m) in [("c_axis_on", &self.c_axis_on), ("c_axis_off", &self.c_axis_off)] {
+        for (field, m) in [
+            ("c_axis_on", &self.c_axis_on),
+            ("c_axis_off", &self.c_axis_off),
+        ] {
             if let Some(m) = m
                 && !is_m_word(m)
             {
@@ -258,6 +266,18 @@ impl ProgramSpec {
     }
 }
 
+/// Reads `passes`, refusing an empty list (absent means one pass; empty is a mistake).
+fn non_empty<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<PassGroup>, D::Error> {
+    let passes = Vec::<PassGroup>::deserialize(d)?;
+    if passes.is_empty() {
+        return Err(serde::de::Error::custom(
+            "no passes: give at least one {\"count\", \"depth_of_cut_um\"}, or leave `passes` \
+             out for one pass cutting the design",
+        ));
+    }
+    Ok(passes)
+}
+
 /// `M`, 1 to 4 digits, optionally `.` and one or two digits.
 fn is_m_word(m: &str) -> bool {
     let Some(rest) = m.strip_prefix('M') else {
@@ -295,7 +315,10 @@ mod tests {
         for (s, w) in stock.iter().zip(want) {
             assert!((s - w).abs() < 1e-15, "{stock:?}");
         }
-        assert_eq!(p.pass_list().iter().map(|q| q.group).collect::<Vec<_>>(), [0, 0, 1, 2]);
+        assert_eq!(
+            p.pass_list().iter().map(|q| q.group).collect::<Vec<_>>(),
+            [0, 0, 1, 2]
+        );
         assert_eq!(ProgramSpec::default().pass_list().len(), 1);
     }
 

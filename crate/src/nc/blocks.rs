@@ -239,7 +239,11 @@ mod tests {
         let text = "surface: composite of an asphere and lenslets ".repeat(10);
         let lines = comment_lines(&text, 60);
         assert!(lines.len() > 5);
-        assert!(lines.iter().all(|l| l.len() <= 60 && l.starts_with('(') && l.ends_with(')')));
+        assert!(
+            lines
+                .iter()
+                .all(|l| l.len() <= 60 && l.starts_with('(') && l.ends_with(')'))
+        );
         let joined: Vec<&str> = lines.iter().map(|l| &l[1..l.len() - 1]).collect();
         assert_eq!(joined.join(" "), text.trim_end());
         // A word longer than a line is cut.

@@ -18,6 +18,6 @@ pub static STYLE: Style = Style {
     wrap_c: false,
     end: &["M2"],
     fts_word: b'Y',
-    max_line: 255,
+    max_line: 252,
     macros: Macros::LinuxCnc,
 };

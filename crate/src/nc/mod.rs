@@ -28,8 +28,8 @@ pub mod fts_table;
 mod iso;
 mod moore;
 pub mod number;
-pub mod program;
 mod precitech;
+pub mod program;
 pub mod reader;
 
 pub use csv::CsvWriter;

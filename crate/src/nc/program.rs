@@ -234,7 +234,11 @@ impl<'a> ProgramWriter<'a> {
         );
         if self.spec.loop_kind == LoopKind::Controller {
             let label = 100 + g.group;
-            let shift = if self.blocks.conv.z_sign < 0.0 { "-" } else { "" };
+            let shift = if self.blocks.conv.z_sign < 0.0 {
+                "-"
+            } else {
+                ""
+            };
             text.push_str(&match self.blocks.style.macros {
                 Macros::Fanuc => format!(
                     "#100 = {}\n#101 = {}\n#102 = {}\n#103 = 0\nWHILE [#103 LT #100] DO 1\n\
@@ -352,10 +356,7 @@ impl<'a> ProgramWriter<'a> {
             Macros::Fanuc => (format!("O{number}\n"), "M99\n".to_string()),
             Macros::LinuxCnc => {
                 let sub = name.trim_end_matches(".ngc");
-                (
-                    format!("o<{sub}> sub\n"),
-                    format!("o<{sub}> endsub\nM2\n"),
-                )
+                (format!("o<{sub}> sub\n"), format!("o<{sub}> endsub\nM2\n"))
             }
         };
         if let Some(out) = self.children_out.as_deref_mut() {

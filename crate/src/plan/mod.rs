@@ -255,7 +255,8 @@ impl Planner {
                     j.output.feed_mode.meaning(),
                     j.machine.spindle_rpm,
                     crate::field::short(
-                        (self.spiral().revolutions() * 600.0 / j.machine.spindle_rpm).round() / 10.0
+                        (self.spiral().revolutions() * 600.0 / j.machine.spindle_rpm).round()
+                            / 10.0
                     )
                 ));
             }
@@ -334,7 +335,13 @@ impl Planner {
         };
         let mut nc = NcWriter::new(nc_out, &self.job().output, &header)?;
         let z_slide = sinks.z_slide;
-        let mut extras = Extras::new(self.job(), sinks.csv, sinks.fts_table, sinks.display, z_slide)?;
+        let mut extras = Extras::new(
+            self.job(),
+            sinks.csv,
+            sinks.fts_table,
+            sinks.display,
+            z_slide,
+        )?;
         self.path
             .for_each_point(Stage::Path, progress, &mut |p, folds| {
                 match extras.slide(p)? {

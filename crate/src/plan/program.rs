@@ -71,7 +71,9 @@ impl Planner {
         });
         check_heights(&spec, &groups, (safe_z, stock, clearance))?;
         let child_limit = self.child_limit(&spec)?;
-        header.lines.extend(program_lines(job, &spec, &groups, &passes));
+        header
+            .lines
+            .extend(program_lines(job, &spec, &groups, &passes));
         let stem = sinks.child_stem.clone().unwrap_or_else(|| job.name.clone());
         let mut counter = std::io::sink();
         let main: &mut dyn std::io::Write = match sinks.nc {
@@ -80,7 +82,9 @@ impl Planner {
         };
         let mut writer = ProgramWriter::new(
             main,
-            sinks.children.map(|c| c as &mut dyn crate::nc::program::ChildFiles),
+            sinks
+                .children
+                .map(|c| c as &mut dyn crate::nc::program::ChildFiles),
             &job.output,
             &spec,
             (&header.lines, groups[0].rpm),
@@ -88,12 +92,21 @@ impl Planner {
             safe_z,
             child_limit,
         )?;
-        let mut extras = Extras::new(job, sinks.csv, sinks.fts_table, sinks.display, sinks.z_slide)?;
+        let mut extras = Extras::new(
+            job,
+            sinks.csv,
+            sinks.fts_table,
+            sinks.display,
+            sinks.z_slide,
+        )?;
         let last = passes.len() - 1;
         let mut pass_reports = Vec::new();
         for (g, group) in groups.iter().enumerate() {
-            let in_group: Vec<(usize, &Pass)> =
-                passes.iter().enumerate().filter(|(_, p)| p.group == g).collect();
+            let in_group: Vec<(usize, &Pass)> = passes
+                .iter()
+                .enumerate()
+                .filter(|(_, p)| p.group == g)
+                .collect();
             let frame = GroupFrame {
                 group: g,
                 count: in_group.len() as u32,
@@ -112,7 +125,8 @@ impl Planner {
                     LoopKind::Controller => 0.0,
                     LoopKind::Unrolled => pass.stock_mm,
                 };
-                let finishing = k == last || (spec.loop_kind == LoopKind::Controller && g + 1 == groups.len());
+                let finishing =
+                    k == last || (spec.loop_kind == LoopKind::Controller && g + 1 == groups.len());
                 self.write_body(
                     &mut writer,
                     &mut extras,
@@ -142,7 +156,11 @@ impl Planner {
                 limit,
                 format!(
                     "the main program takes {main_bytes} bytes ({}): give a larger limit",
-                    if children.is_empty() { "the estimate kept it whole" } else { "its frame and calls" }
+                    if children.is_empty() {
+                        "the estimate kept it whole"
+                    } else {
+                        "its frame and calls"
+                    }
                 ),
             )
             .into());
@@ -173,7 +191,10 @@ impl Planner {
         let groups = spec.passes.len().max(1);
         let mut out = Vec::with_capacity(groups);
         for g in 0..groups {
-            let own = spec.passes.get(g).filter(|p| p.feed_mm_per_rev.is_some() || p.spindle_rpm.is_some());
+            let own = spec
+                .passes
+                .get(g)
+                .filter(|p| p.feed_mm_per_rev.is_some() || p.spindle_rpm.is_some());
             let path = match own {
                 None => PathRef::Strategy(&self.path),
                 Some(p) => {
@@ -188,7 +209,11 @@ impl Planner {
                         PathError::Job(crate::job::JobError::Field(f)) => {
                             PathError::from(FieldError::new(
                                 format!("program.passes[{g}]"),
-                                format!("feed {}, speed {}", short(j.strategy.feed_mm_per_rev), short(j.machine.spindle_rpm)),
+                                format!(
+                                    "feed {}, speed {}",
+                                    short(j.strategy.feed_mm_per_rev),
+                                    short(j.machine.spindle_rpm)
+                                ),
                                 format!("the group's spiral cannot be laid: {f}"),
                             ))
                         }
@@ -316,7 +341,12 @@ fn check_heights(
 }
 
 /// The header's lines about the program: passes, loop, feed meaning and cycle time, edge.
-fn program_lines(job: &Job, spec: &ProgramSpec, groups: &[GroupPath], passes: &[Pass]) -> Vec<String> {
+fn program_lines(
+    job: &Job,
+    spec: &ProgramSpec,
+    groups: &[GroupPath],
+    passes: &[Pass],
+) -> Vec<String> {
     let mut lines = Vec::new();
     let described: Vec<String> = if spec.passes.is_empty() {
         vec!["one pass".into()]
@@ -340,7 +370,8 @@ fn program_lines(job: &Job, spec: &ProgramSpec, groups: &[GroupPath], passes: &[
         described.join(", "),
         short(spec.stock_mm()),
         match spec.loop_kind {
-            LoopKind::Controller => "one body a group, repeated by the controller with a G52 Z shift",
+            LoopKind::Controller =>
+                "one body a group, repeated by the controller with a G52 Z shift",
             LoopKind::Unrolled => "every pass written out",
         }
     ));

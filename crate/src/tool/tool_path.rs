@@ -88,9 +88,12 @@ impl ToolPath {
         job.validate()?;
         let surface = job.build_surface()?;
         // The material ends at the part edge, wherever the spiral starts.
-        let nose =
-            NoseCompensator::new(&job.tool, surface.feature_length_mm(), job.material_radius_mm())
-                .map_err(|e| e.within("tool"))?;
+        let nose = NoseCompensator::new(
+            &job.tool,
+            surface.feature_length_mm(),
+            job.material_radius_mm(),
+        )
+        .map_err(|e| e.within("tool"))?;
         let spiral = spiral(
             job.outer_radius_mm(),
             &job.strategy,

@@ -213,9 +213,9 @@ impl spiralcam::nc::program::ChildFiles for ChildOutputs {
                 path: path.clone(),
             };
             check_targets(&[target], &self.inputs)
-                .map_err(|e| std::io::Error::other(format!("{e:?}")))?;
+                .map_err(|e| std::io::Error::other(e.to_string()))?;
             let file =
-                OutputFile::create(&path).map_err(|e| std::io::Error::other(format!("{e:?}")))?;
+                OutputFile::create(&path).map_err(|e| std::io::Error::other(e.to_string()))?;
             self.files.push(file);
         }
         let file = self

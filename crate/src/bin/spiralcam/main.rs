@@ -48,6 +48,15 @@ pub enum Failure {
     Stopped,
 }
 
+impl std::fmt::Display for Failure {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        match self {
+            Failure::Usage(m) | Failure::Run(m) => f.write_str(m),
+            Failure::Stopped => f.write_str("stopped by a signal"),
+        }
+    }
+}
+
 /// A failure of the run from any error.
 pub fn run_err(e: impl std::fmt::Display) -> Failure {
     if cancel::cancelled() {

@@ -1,8 +1,8 @@
 //! `spiralcam plan`: admits the job, then streams its path into the files asked for.
 
 use crate::files::{ChildOutputs, OutputFile, Target, check_targets, write_file};
-use spiralcam::nc::program::ChildFiles;
 use crate::{Failure, bar, read_job, run_err};
+use spiralcam::nc::program::ChildFiles;
 use spiralcam::plan::{Limits, Planner, Sinks};
 use spiralcam::report::Outputs;
 use std::io::Write;

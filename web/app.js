@@ -529,7 +529,7 @@ async function main() {
     progress.value = done;
     const writing = { nc: 'writing NC', csv: 'writing CSV', fts: 'writing the FTS table' }[kind];
     const what = stage === 'planning' && writing ? writing : stage;
-    const items = { 'sampling bands': 'circles', 'concave zones': 'sections and zones' }[stage] ?? 'points';
+    const items = { 'sampling bands': 'circles', 'concave zones': 'sections and zones', 'FTS grid': 'passes (at most)' }[stage] ?? 'points';
     progressText.textContent = `${what}: ${Math.round((100 * done) / Math.max(total, 1))} % (${fmt(done, 0)} / ${fmt(total, 0)} ${items})`;
   });
 

@@ -3,6 +3,7 @@
 //! and the conventions in effect, is [`crate::nc`]'s (`OutputSpec::style`,
 //! `OutputSpec::conventions`).
 
+use super::fts_grid::FtsGridSpec;
 use crate::field::{FieldError, non_negative, positive};
 use serde::{Deserialize, Serialize};
 
@@ -75,6 +76,10 @@ pub struct OutputSpec {
     /// default `W`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fts_word: Option<String>,
+    /// The servo's gridded table (`spiralcam plan --fts-table`): tolerance, counts and motors;
+    /// absent: the defaults ([`FtsGridSpec::default`]) when the table is asked for.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fts_grid: Option<FtsGridSpec>,
 }
 
 impl Default for OutputSpec {
@@ -92,6 +97,7 @@ impl Default for OutputSpec {
             plunge_feed_mm_per_min: 50.0,
             clearance_mm: 1.0,
             fts_word: None,
+            fts_grid: None,
         }
     }
 }
@@ -140,6 +146,9 @@ impl OutputSpec {
         {
             let allowed = format!("must be one of {}", FTS_WORDS.join(", "));
             return Err(FieldError::new("fts_word", format!("{word:?}"), allowed));
+        }
+        if let Some(grid) = &self.fts_grid {
+            grid.validate()?;
         }
         Ok(())
     }

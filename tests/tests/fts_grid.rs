@@ -13,23 +13,13 @@
 
 mod common;
 
-use common::example_job;
+use common::{coarse_grid_fts, example_job};
 use spiralcam::dynamics::Dynamics;
 use spiralcam::dynamics::fts_grid::{FtsGrid, FtsGridReport};
 use spiralcam::job::{Compensation, Dialect, FtsGridSpec, Job};
 use spiralcam::nc::fts_grid::{write_csv, write_pmac};
 use spiralcam::plan::{Planner, Sinks};
 use std::ops::ControlFlow;
-
-/// The example split job coarsened for a debug build: 200 revolutions of 512 points.
-fn coarse() -> Job {
-    let mut job = example_job("sinusoid-grid-fts.json");
-    job.strategy.feed_mm_per_rev = 0.02;
-    job.strategy.sampling = spiralcam::job::Sampling::ConstantAngle {
-        points_per_rev: 512,
-    };
-    job
-}
 
 /// The job's table options, or their defaults.
 fn spec(job: &Job) -> FtsGridSpec {
@@ -269,7 +259,7 @@ fn the_example_jobs_table_read_back_reproduces_the_planned_w() {
 
 #[test]
 fn the_planners_files_are_the_table_and_its_csv() {
-    let job = coarse();
+    let job = coarse_grid_fts();
     let run = run(&job);
     let planner = Planner::new(&job).unwrap();
     let (mut text, mut csv) = (Vec::new(), Vec::new());
@@ -299,7 +289,7 @@ fn the_planners_files_are_the_table_and_its_csv() {
 #[test]
 fn x_negative_rolls_over_and_reads_back_alike() {
     // Precitech style: X = −ρ, so the X motor's positions −S…0 roll over to 0…S.
-    let mut job = coarse();
+    let mut job = coarse_grid_fts();
     job.output.dialect = Dialect::Precitech;
     assert_eq!(job.output.conventions().x_sign, -1.0);
     job.output.fts_grid = Some(FtsGridSpec {
@@ -329,7 +319,7 @@ fn x_negative_rolls_over_and_reads_back_alike() {
 
 #[test]
 fn a_tighter_tolerance_gives_a_finer_grid() {
-    let mut job = coarse();
+    let mut job = coarse_grid_fts();
     let mut last: Option<FtsGridReport> = None;
     for tolerance_um in [0.2, 0.05, 0.02] {
         job.output.fts_grid = Some(FtsGridSpec {
@@ -367,7 +357,8 @@ fn refusal(job: &Job) -> String {
 #[test]
 fn bad_options_are_refused_naming_the_field() {
     let with = |grid: &str| {
-        let mut job: serde_json::Value = serde_json::from_str(&coarse().to_json()).unwrap();
+        let mut job: serde_json::Value =
+            serde_json::from_str(&coarse_grid_fts().to_json()).unwrap();
         job["output"]["fts_grid"] = serde_json::from_str(grid).unwrap();
         match Job::from_json(&job.to_string()) {
             Ok(job) => refusal(&job),

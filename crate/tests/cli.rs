@@ -463,6 +463,36 @@ fn bad_values_exit_1_naming_the_field() {
     assert_eq!(dir.files(), ["bad.json"]);
 }
 
+/// A gridded table finer than its bound: exit 1 naming the tolerance, and no file left behind.
+#[test]
+fn a_grid_beyond_its_bound_exits_1_leaving_nothing() {
+    let mut job = Job::from_json(JOB).unwrap();
+    job.machine = spiralcam::job::machine::presets()[2].machine(job.machine.spindle_rpm);
+    job.strategy.split = Some(spiralcam::job::SplitSpec::Auto);
+    job.output.fts_grid = Some(spiralcam::job::FtsGridSpec {
+        tolerance_um: 1e-4,
+        ..Default::default()
+    });
+    let dir = Scratch::new("grid-bound");
+    let job_path = dir.write("job.json", &job.to_json());
+    let (nc, grid) = (dir.path("out.nc"), dir.path("grid.pmc"));
+    let o = spiralcam(&[
+        OsStr::new("plan"),
+        job_path.as_os_str(),
+        OsStr::new("--nc"),
+        nc.as_os_str(),
+        OsStr::new("--fts-table"),
+        grid.as_os_str(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("output.fts_grid.tolerance_um = 0.0001: needs "),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(dir.files(), ["job.json"]);
+}
+
 #[test]
 fn missing_files_exit_1_naming_the_file() {
     let dir = Scratch::new("missing");

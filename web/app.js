@@ -51,7 +51,7 @@ class PlannerWorker {
     reject(err);
   }
 
-  /** `kind`: "plan", "analyse", "nc", "csv" or "fts". */
+  /** `kind`: "plan", "analyse", "nc", "csv", "fts" or "grid". */
   run(kind, job) {
     this.cancel();
     const id = this.nextId++;
@@ -244,6 +244,8 @@ function showDynamics(d, job) {
   const a = d.axes;
   rows.push(['X axis', axisText(a.x)], ['Z axis', axisText(a.z)]);
   if (split) {
+    const g = d.fts_grid;
+    if (g) rows.push(['FTS grid (PMAC)', `${g.rows} × ${g.columns} entries (X every ${fmt(g.x_spacing_mm * 1000, 4)} µm, C every ${fmt(g.c_spacing_deg, 4)}°), ${bytes(g.pmac_bytes)}; bilinear error max ${fmt(g.max_error_um * 1000, 3)} nm, RMS ${fmt(g.rms_error_um * 1000, 3)} nm (tolerance ${fmt(g.tolerance_um * 1000, 3)} nm)`]);
     rows.push(['W axis', `${axisText(a.w, true)}, stroke ${sig(a.fts_stroke.used_um)}${a.fts_stroke.limit_um == null ? '' : ` of ${sig(a.fts_stroke.limit_um)}`} µm`]);
   }
   const br = a.block_rate;
@@ -568,9 +570,9 @@ async function main() {
   const worker = new PlannerWorker((kind, done, total, stage) => {
     progress.max = total;
     progress.value = done;
-    const writing = { nc: 'writing NC', csv: 'writing CSV', fts: 'writing the FTS table' }[kind];
+    const writing = { nc: 'writing NC', csv: 'writing CSV', fts: 'writing the FTS table', grid: 'writing the FTS grid' }[kind];
     const what = stage === 'planning' && writing ? writing : stage;
-    const items = { 'sampling bands': 'circles', 'concave zones': 'sections and zones' }[stage] ?? 'points';
+    const items = { 'sampling bands': 'circles', 'concave zones': 'sections and zones', 'FTS grid': 'passes (at most)' }[stage] ?? 'points';
     progressText.textContent = `${what}: ${Math.round((100 * done) / Math.max(total, 1))} % (${fmt(done, 0)} / ${fmt(total, 0)} ${items})`;
   });
 
@@ -603,6 +605,7 @@ async function main() {
       status.plans += 1;
       showReport(m.report, job);
       $('download-fts').hidden = !m.report.dynamics?.split;
+      $('download-fts-grid').hidden = !m.report.dynamics?.split;
       labelDownloads(m.report);
       showDynamics(m.report.dynamics, job);
       showMaps(m.maps, stops);
@@ -637,8 +640,8 @@ async function main() {
     busy(true);
     try {
       const m = await worker.run(kind, planned.job);
-      const zipped = kind === 'nc' && (status.report?.program?.children?.length ?? 0) > 0;
-      const name = zipped ? `${planned.job.name}.zip` : { nc: planned.names.nc, csv: planned.names.csv, fts: `${planned.job.name}-fts.csv` }[kind];
+      const zipped = kind === 'grid' || (kind === 'nc' && (status.report?.program?.children?.length ?? 0) > 0);
+      const name = kind === 'grid' ? `${planned.job.name}-fts-grid.zip` : zipped ? `${planned.job.name}.zip` : { nc: planned.names.nc, csv: planned.names.csv, fts: `${planned.job.name}-fts.csv` }[kind];
       download(name, m.bytes, zipped ? 'application/zip' : kind === 'nc' ? 'text/plain' : 'text/csv');
     } catch (e) {
       if (!e.cancelled) showFailure(e);
@@ -671,6 +674,7 @@ async function main() {
   $('download-nc').addEventListener('click', () => save('nc'));
   $('download-csv').addEventListener('click', () => save('csv'));
   $('download-fts').addEventListener('click', () => save('fts'));
+  $('download-fts-grid').addEventListener('click', () => save('grid'));
   $('download-job').addEventListener('click', () => {
     const job = form.value();
     download(`${job.name}.json`, `${JSON.stringify(job, null, 2)}\n`, 'application/json');

@@ -375,6 +375,7 @@ const SECTIONS = [
       path: 'output.fts_word', label: 'Servo word', options: ['', 'W', 'U', 'V', 'A', 'B', 'Y'], optionLabels: ['dialect default (ISO Y, others W)', 'W', 'U', 'V', 'A', 'B', 'Y'],
       optional: true, hint: 'the fast tool servo\'s word in split programs', whenField: 'strategy.split.type', when: 'symmetric low_pass auto',
     },
+    { path: 'output.fts_grid.tolerance_um', label: 'FTS grid tolerance', unit: 'µm', optional: true, hint: 'largest bilinear error of the PMAC table against the planned W; blank: 0.05; set it to see the grid in the report', whenField: 'strategy.split.type', when: 'symmetric low_pass auto' },
   ]],
   ['Program', [
     { path: 'program', label: 'Program', role: 'program', options: ['', 'set'], optionLabels: ['one spiral', 'set-up, passes, loop, child programs'], hint: 'the program an operator runs as written (crate/docs/job-format.md, "The program section")' },

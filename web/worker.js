@@ -3,7 +3,7 @@
 // {kind: "error", message}.
 // Typed arrays are transferred, not copied.
 
-import init, { analyse, plan, nc_program, csv_table, fts_table, power_maps } from '../pkg/spiralcam_web.js';
+import init, { analyse, plan, nc_program, csv_table, fts_table, fts_grid, power_maps } from '../pkg/spiralcam_web.js';
 
 /** Samples per side of the power maps. */
 const MAP_SIZE = 161;
@@ -53,7 +53,7 @@ self.onmessage = async (e) => {
       a.free();
       self.postMessage(m, [m.linearization.buffer, m.form.buffer, m.clearance.buffer]);
     } else {
-      const write = { nc: nc_program, csv: csv_table, fts: fts_table }[kind];
+      const write = { nc: nc_program, csv: csv_table, fts: fts_table, grid: fts_grid }[kind];
       const bytes = write(job, progress);
       self.postMessage({ id, kind: 'bytes', bytes }, [bytes.buffer]);
     }

@@ -15,6 +15,8 @@ pub enum Stage {
     Path,
     /// The machine dynamics reading the path into memory: items are points.
     Dynamics,
+    /// The servo's gridded table sized against the path: items are passes over the path.
+    FtsGrid,
     /// The concave-zone report: items are radial sections, then zones measured.
     Zones,
     /// The accuracy analysis reading the path: items are points.
@@ -28,6 +30,7 @@ impl Stage {
             Stage::Bands => "sampling bands",
             Stage::Path => "planning",
             Stage::Dynamics => "dynamics",
+            Stage::FtsGrid => "FTS grid",
             Stage::Zones => "concave zones",
             Stage::Analysis => "analysing",
         }

@@ -129,6 +129,11 @@ pub struct Cost {
     pub csv_bytes: u64,
     /// Size of the servo's table, bytes, for a split path.
     pub fts_table_bytes: Option<u64>,
+    /// The most the servo's gridded table (PMAC text and CSV together) may weigh, bytes, for a
+    /// split path: its size is known only once the grid is sized against the tolerance, after
+    /// the dynamics, so the estimate is the bound of its entries
+    /// ([`crate::dynamics::fts_grid::MAX_ENTRIES`]) at the widest entry and number.
+    pub fts_grid_bytes: Option<u64>,
     /// Memory the machine dynamics hold, bytes, when they run.
     pub dynamics_memory_bytes: Option<u64>,
     /// Time to plan and write, seconds (with a clock; none in the browser's estimate).
@@ -144,6 +149,8 @@ pub struct Outputs {
     pub csv: bool,
     /// The servo's table.
     pub fts_table: bool,
+    /// The servo's gridded table and its CSV.
+    pub fts_grid: bool,
 }
 
 impl Cost {
@@ -153,6 +160,7 @@ impl Cost {
         pick(outputs.nc, self.nc_bytes)
             + pick(outputs.csv, self.csv_bytes)
             + pick(outputs.fts_table, self.fts_table_bytes.unwrap_or(0))
+            + pick(outputs.fts_grid, self.fts_grid_bytes.unwrap_or(0))
     }
 
     /// One line for the user: points, the files' sizes, the time.
@@ -166,6 +174,9 @@ impl Cost {
         }
         if let (true, Some(b)) = (outputs.fts_table, self.fts_table_bytes) {
             parts.push(format!("servo table {}", bytes(b)));
+        }
+        if let (true, Some(b)) = (outputs.fts_grid, self.fts_grid_bytes) {
+            parts.push(format!("servo grid at most {}", bytes(b)));
         }
         if let Some(m) = self.dynamics_memory_bytes {
             parts.push(format!("dynamics {} in memory", bytes(m)));

@@ -174,16 +174,18 @@ fn plan_writes_the_program_the_table_and_the_report() {
     assert_eq!(value["points"].as_u64(), Some(rows));
 }
 
-/// A split job: the program (with W), the servo's table and the report with its dynamics are
-/// the library's `run_with_dynamics` output, byte for byte.
+/// A split job: the program (with W), the servo's table, its gridded table (PMAC text and the
+/// CSV beside it) and the report with its dynamics are the library's `run_with_dynamics`
+/// output, byte for byte.
 #[test]
-fn plan_writes_the_split_program_and_the_servo_table() {
+fn plan_writes_the_split_program_and_the_servo_tables() {
     let mut job = Job::from_json(JOB).unwrap();
     job.machine = spiralcam::job::machine::presets()[2].machine(job.machine.spindle_rpm);
     job.strategy.split = Some(spiralcam::job::SplitSpec::Auto);
     let dir = Scratch::new("split");
     let job_path = dir.write("job.json", &job.to_json());
     let (nc, fts, report) = (dir.path("out.nc"), dir.path("fts.csv"), dir.path("r.json"));
+    let grid = dir.path("grid.pmc");
     let o = spiralcam(&[
         OsStr::new("plan"),
         job_path.as_os_str(),
@@ -191,17 +193,22 @@ fn plan_writes_the_split_program_and_the_servo_table() {
         nc.as_os_str(),
         OsStr::new("--fts-csv"),
         fts.as_os_str(),
+        OsStr::new("--fts-table"),
+        grid.as_os_str(),
         OsStr::new("--report"),
         report.as_os_str(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let (mut lib_nc, mut lib_fts) = (Vec::new(), Vec::new());
+    let (mut lib_grid, mut lib_grid_csv) = (Vec::new(), Vec::new());
     let lib_report = Planner::new(&job)
         .unwrap()
         .run_with_dynamics(
             Sinks {
                 nc: Some(&mut lib_nc),
                 fts_table: Some(&mut lib_fts),
+                fts_grid: Some(&mut lib_grid),
+                fts_grid_csv: Some(&mut lib_grid_csv),
                 ..Default::default()
             },
             &mut |_| ControlFlow::Continue(()),
@@ -212,6 +219,15 @@ fn plan_writes_the_split_program_and_the_servo_table() {
         std::fs::read(&fts).unwrap() == lib_fts,
         "servo table differs"
     );
+    assert!(std::fs::read(&grid).unwrap() == lib_grid, "grid differs");
+    assert!(
+        std::fs::read(dir.path("grid.csv")).unwrap() == lib_grid_csv,
+        "grid CSV differs"
+    );
+    let figures = &lib_report.dynamics.as_ref().unwrap().fts_grid;
+    let figures = figures.as_ref().expect("the grid's figures");
+    assert_eq!(figures.pmac_bytes, lib_grid.len() as u64);
+    assert_eq!(figures.csv_bytes, lib_grid_csv.len() as u64);
     assert!(String::from_utf8(lib_nc).unwrap().contains(" W"));
     // The command line's report is the library's, with the estimate it was admitted on.
     let mut written: serde_json::Value =
@@ -447,6 +463,36 @@ fn bad_values_exit_1_naming_the_field() {
     assert_eq!(dir.files(), ["bad.json"]);
 }
 
+/// A gridded table finer than its bound: exit 1 naming the tolerance, and no file left behind.
+#[test]
+fn a_grid_beyond_its_bound_exits_1_leaving_nothing() {
+    let mut job = Job::from_json(JOB).unwrap();
+    job.machine = spiralcam::job::machine::presets()[2].machine(job.machine.spindle_rpm);
+    job.strategy.split = Some(spiralcam::job::SplitSpec::Auto);
+    job.output.fts_grid = Some(spiralcam::job::FtsGridSpec {
+        tolerance_um: 1e-4,
+        ..Default::default()
+    });
+    let dir = Scratch::new("grid-bound");
+    let job_path = dir.write("job.json", &job.to_json());
+    let (nc, grid) = (dir.path("out.nc"), dir.path("grid.pmc"));
+    let o = spiralcam(&[
+        OsStr::new("plan"),
+        job_path.as_os_str(),
+        OsStr::new("--nc"),
+        nc.as_os_str(),
+        OsStr::new("--fts-table"),
+        grid.as_os_str(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("output.fts_grid.tolerance_um = 0.0001: needs "),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(dir.files(), ["job.json"]);
+}
+
 #[test]
 fn missing_files_exit_1_naming_the_file() {
     let dir = Scratch::new("missing");
@@ -489,7 +535,7 @@ fn usage_errors_exit_2_with_the_usage() {
     let dir = Scratch::new("usage");
     let job = dir.write("job.json", JOB);
     let job = job.to_str().unwrap();
-    let cases: [(&[&str], &str); 8] = [
+    let cases: [(&[&str], &str); 10] = [
         (&[], "expected a command"),
         (&["frobnicate"], "expected a command"),
         (&["plan"], "missing JOB.json"),
@@ -500,6 +546,14 @@ fn usage_errors_exit_2_with_the_usage() {
         (
             &["plan", job, "--fts-csv", "t.csv"],
             "--fts-csv needs a split path",
+        ),
+        (
+            &["plan", job, "--fts-table", "t.pmc"],
+            "--fts-table needs a split path",
+        ),
+        (
+            &["plan", job, "--fts-table", "t.csv"],
+            "--fts-table (its CSV) t.csv: the same file as --fts-table",
         ),
     ];
     for (args, message) in cases {

@@ -9,7 +9,7 @@
 
 mod common;
 
-use common::example_job;
+use common::{coarse_grid_fts, example_job};
 use spiralcam::dynamics::split::{Limit, Verdict};
 use spiralcam::job::Job;
 use spiralcam::job::SplitSpec;
@@ -32,17 +32,6 @@ fn plan(job: &Job) -> (Report, String, String) {
         .unwrap_or_else(|e| panic!("{}: {e}", job.name));
     let text = |b: Vec<u8>| String::from_utf8(b).unwrap();
     (report, text(nc), text(table))
-}
-
-/// The example split job, coarsened for a debug build: 200 revolutions of 512 points
-/// (102 401 points) instead of 800 of 1024.
-fn grid_fts() -> Job {
-    let mut job = example_job("sinusoid-grid-fts.json");
-    job.strategy.feed_mm_per_rev = 0.02;
-    job.strategy.sampling = spiralcam::job::Sampling::ConstantAngle {
-        points_per_rev: 512,
-    };
-    job
 }
 
 /// Why `job` cannot be planned with its dynamics (it is read fine).
@@ -69,7 +58,7 @@ fn blocks(nc: &str) -> Vec<&str> {
 
 #[test]
 fn a_split_program_adds_up_to_the_single_channel_program() {
-    let job = grid_fts();
+    let job = coarse_grid_fts();
     let (report, nc, table) = plan(&job);
     let mut plain = job.clone();
     plain.strategy.split = None;
@@ -170,7 +159,7 @@ fn machine_limits_alone_check_the_axes_and_leave_the_program_unchanged() {
 /// and re-planned at that speed (rounded down by the splitter) the split is feasible.
 #[test]
 fn an_infeasible_split_is_reported_with_the_speed_that_would_do() {
-    let mut job = grid_fts();
+    let mut job = coarse_grid_fts();
     if let Some(fts) = job.machine.fts.as_mut() {
         fts.stroke_um = 1.0;
     }
@@ -235,12 +224,12 @@ fn a_split_the_machine_cannot_make_is_refused_naming_the_field() {
         ),
     ];
     for (change, message) in cases {
-        let mut job = grid_fts();
+        let mut job = coarse_grid_fts();
         change(&mut job);
         assert_eq!(Planner::new(&job).unwrap_err().to_string(), message);
     }
     // Above the path's Nyquist frequency (256 cycles/rev at 300 rpm: 1280 Hz) on the path.
-    let mut job = grid_fts();
+    let mut job = coarse_grid_fts();
     job.strategy.split = Some(SplitSpec::LowPass { cutoff_hz: 2000.0 });
     let e = dynamics_error(&job);
     assert!(
@@ -303,7 +292,7 @@ fn the_compound_eye_splits_its_two_frequencies_onto_the_right_axes() {
 
 #[test]
 fn the_dynamics_refuse_a_path_too_long_to_hold() {
-    let mut job = grid_fts();
+    let mut job = coarse_grid_fts();
     job.strategy.feed_mm_per_rev = 0.0002; // 20 000 revolutions of 512 points
     let e = dynamics_error(&job);
     assert!(

@@ -224,6 +224,38 @@ pub fn fts_table(job: JsValue, progress: &js_sys::Function) -> Result<Vec<u8>, J
     Ok(output_file(job, progress, Download::FtsTable, None)?.0)
 }
 
+/// The servo's gridded table of a split `job` (`spiralcam plan JOB --fts-table FILE`): a zip of
+/// the Delta Tau PMAC table (`NAME-fts-grid.pmc`) and the same grid as CSV
+/// (`NAME-fts-grid.csv`), byte for byte what the command line writes.
+#[wasm_bindgen]
+pub fn fts_grid(job: JsValue, progress: &js_sys::Function) -> Result<Vec<u8>, JsError> {
+    let job: Job = parse_job(job)?;
+    let planner = Planner::with_progress(&job, &mut reporter(progress))
+        .map_err(|e| JsError::new(&e.to_string()))?;
+    let outputs = Outputs {
+        fts_grid: true,
+        ..Outputs::default()
+    };
+    admit(&planner, outputs)?;
+    let (mut pmac, mut csv) = (Vec::new(), Vec::new());
+    planner
+        .run_with_dynamics(
+            Sinks {
+                fts_grid: Some(&mut pmac),
+                fts_grid_csv: Some(&mut csv),
+                ..Default::default()
+            },
+            &mut reporter(progress),
+        )
+        .map_err(|e| JsError::new(&e.to_string()))?;
+    let name = &planner.job().name;
+    crate::bundle::zip_files(&[
+        (format!("{name}-fts-grid.pmc"), pmac),
+        (format!("{name}-fts-grid.csv"), csv),
+    ])
+    .map_err(|e| JsError::new(&e))
+}
+
 /// The most bytes a download is built from, in the page's memory (the command line writes any
 /// size to disk).
 const MAX_DOWNLOAD_BYTES: u64 = 1_000_000_000;
@@ -269,6 +301,7 @@ fn output_file(
         nc: matches!(download, Download::Nc),
         csv: matches!(download, Download::Csv),
         fts_table: matches!(download, Download::FtsTable),
+        fts_grid: false,
     };
     let cost = admit(&planner, outputs)?;
     let job = planner.job();

@@ -10,7 +10,10 @@
 //! - [`split`](mod@split): the split of the path between the Z slide and a fast tool servo W
 //!   (symmetric, low-pass, automatic), with Z + W = z;
 //! - [`axis_checks`]: every point's axis velocities and accelerations against the machine
-//!   ([`crate::job::machine`]), the block rate, the servo stroke, the cycle time.
+//!   ([`crate::job::machine`]), the block rate, the servo stroke, the cycle time;
+//! - [`fts_grid`]: the servo's share W resampled onto a grid of spindle angle × X, sized so that
+//!   the controller's bilinear interpolation of the table reproduces W within the job's
+//!   tolerance (a PMAC-style 2-D compensation table, [`crate::nc::fts_grid`]).
 //!
 //! This module runs them over the whole path in memory (the FFT needs it: about 100 bytes a
 //! point), before the NC program is written, when the job asks for it: a `strategy.split`, or
@@ -18,11 +21,13 @@
 //! pass with the slide's share `Z` and the servo's `W` ([`crate::nc::NcWriter::point_split`]).
 
 pub mod axis_checks;
+pub mod fts_grid;
 pub mod path_signal;
 pub mod spectrum;
 pub mod split;
 
 use crate::dynamics::axis_checks::{AxisReport, AxisSample, check_axes};
+use crate::dynamics::fts_grid::{FtsGrid, FtsGridReport, ServoPath};
 use crate::dynamics::path_signal::{PathSignal, UniformSignal, extremes, hz, peak_to_valley};
 use crate::dynamics::spectrum::{
     BandFrequency, Spectrum, amplitude_spectrum, highest_significant_cycles_per_rev,
@@ -81,6 +86,9 @@ pub struct DynamicsReport {
     pub channels: Option<ChannelProfile>,
     /// The frequencies the X and Z slides are asked to follow against their bandwidths.
     pub bandwidth: SlideBandwidths,
+    /// The servo's gridded table, when it was asked for ([`Dynamics::run_with_grid`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fts_grid: Option<FtsGridReport>,
 }
 
 /// A slide's bandwidth against what its channel asks.
@@ -186,6 +194,8 @@ pub struct Dynamics {
     pub z_slide_mm: Option<Vec<f64>>,
     /// W of the servo at every point, mm, when the path is split.
     pub w_fts_mm: Option<Vec<f64>>,
+    /// The servo's gridded table, when it was asked for and the path is split.
+    pub fts_grid: Option<FtsGrid>,
 }
 
 /// The path as the dynamics keep it: its signal and the cumulative angle of every point
@@ -336,6 +346,16 @@ impl Dynamics {
         path: &ToolPath,
         progress: &mut dyn FnMut(Progress) -> ControlFlow<()>,
     ) -> Result<Self, DynamicsError> {
+        Self::run_with_grid(path, false, progress)
+    }
+
+    /// [`Self::run`], and with `grid` and a split path the servo's gridded table
+    /// ([`fts_grid`]) with the job's options (`output.fts_grid`, or their defaults).
+    pub fn run_with_grid(
+        path: &ToolPath,
+        grid: bool,
+        progress: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+    ) -> Result<Self, DynamicsError> {
         let total = path.spiral().point_count_hint();
         if total > MAX_POINTS {
             return Err(crate::field::FieldError::new(
@@ -353,7 +373,22 @@ impl Dynamics {
             columns.push(p);
             Ok::<(), DynamicsError>(())
         })?;
-        Ok(Self::of_columns(path.job(), &columns)?)
+        let mut dynamics = Self::of_columns(path.job(), &columns)?;
+        if let (true, Some(w)) = (grid, &dynamics.w_fts_mm) {
+            let job = path.job();
+            let servo = ServoPath {
+                theta: &columns.theta,
+                rho: &columns.signal.rho_mm,
+                w,
+            };
+            let spec = job.output.fts_grid.clone().unwrap_or_default();
+            let conv = job.output.conventions();
+            let built = FtsGrid::build(&job.name, servo, &spec, &conv, progress)?;
+            let grid = built.ok_or(PathError::Cancelled)?;
+            dynamics.report.fts_grid = Some(grid.report.clone());
+            dynamics.fts_grid = Some(grid);
+        }
+        Ok(dynamics)
     }
 
     /// The dynamics of the planned `points` of `job`.
@@ -430,9 +465,11 @@ impl Dynamics {
                 axes,
                 channels,
                 bandwidth,
+                fts_grid: None,
             },
             z_slide_mm: z_slide,
             w_fts_mm: w_fts,
+            fts_grid: None,
         })
     }
 }

@@ -12,14 +12,17 @@
 //! - [`tool`]: `tool` (nose radius, included, rake and clearance angles);
 //! - [`strategy`]: `strategy` (feed, sampling, direction, compensation, split);
 //! - [`machine`]: `machine` (spindle, slides, servo, block rate) and the example presets;
-//! - [`output`]: `output` (dialect, decimals, signs, feed mode, approach).
+//! - [`output`]: `output` (dialect, decimals, signs, feed mode, approach);
+//! - [`fts_grid`]: `output.fts_grid` (the servo's gridded table: tolerance, counts, motors).
 
+pub mod fts_grid;
 pub mod machine;
 pub mod output;
 pub mod program;
 pub mod strategy;
 pub mod tool;
 
+pub use fts_grid::FtsGridSpec;
 pub use machine::MachineSpec;
 pub use output::{Dialect, FeedMode, OutputSpec};
 pub use program::{LoopKind, PassGroup, ProgramSpec};

@@ -3,6 +3,7 @@
 //! and the conventions in effect, is [`crate::nc`]'s (`OutputSpec::style`,
 //! `OutputSpec::conventions`).
 
+use super::fts_grid::FtsGridSpec;
 use crate::field::{FieldError, non_negative, positive};
 use serde::{Deserialize, Serialize};
 
@@ -125,6 +126,10 @@ pub struct OutputSpec {
     /// Decimals of F, 0…9; default 3, 6 for the block-time feed modes.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub decimals_f: Option<u32>,
+    /// The servo's gridded table (`spiralcam plan --fts-table`): tolerance, counts and motors;
+    /// absent: the defaults ([`FtsGridSpec::default`]) when the table is asked for.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fts_grid: Option<FtsGridSpec>,
 }
 
 impl Default for OutputSpec {
@@ -144,6 +149,7 @@ impl Default for OutputSpec {
             fts_word: None,
             max_line_chars: None,
             decimals_f: None,
+            fts_grid: None,
         }
     }
 }
@@ -202,6 +208,9 @@ impl OutputSpec {
         {
             let allowed = format!("must be one of {}", FTS_WORDS.join(", "));
             return Err(FieldError::new("fts_word", format!("{word:?}"), allowed));
+        }
+        if let Some(grid) = &self.fts_grid {
+            grid.validate()?;
         }
         Ok(())
     }

@@ -1,5 +1,6 @@
-//! The NC layer: point-to-point `C X Z` programs in three dialects, a CSV of the points and the
-//! fast tool servo's table, written from the path's points ([`crate::path::PathPoint`]) with the
+//! The NC layer: point-to-point `C X Z` programs in three dialects, a CSV of the points, the
+//! fast tool servo's table and its gridded table ([`fts_grid`], a PMAC-style 2-D compensation
+//! table and its CSV), written from the path's points ([`crate::path::PathPoint`]) with the
 //! job's output options ([`crate::job::OutputSpec`]); it uses nothing else above the helpers.
 //!
 //! Every program has the same shape: a header of comments restating the job; the dialect's
@@ -24,6 +25,7 @@
 
 pub mod blocks;
 pub mod csv;
+pub mod fts_grid;
 pub mod fts_table;
 mod iso;
 mod moore;

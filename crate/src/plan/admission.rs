@@ -7,7 +7,9 @@
 //! exact for constant angle, within a few points otherwise). **Bytes**: the writers themselves
 //! format [`PROBES`] pairs of consecutive points spread evenly in radius ([`ToolPath::probe`])
 //! into a byte counter; the mean block weighted by the path's points per mm of radius there,
-//! times the points, plus the header, approach and end written once. **Time**: with a clock,
+//! times the points, plus the header, approach and end written once. The servo's gridded table
+//! is sized only after the dynamics: its bound ([`crate::nc::fts_grid::max_bytes`] of
+//! [`crate::dynamics::fts_grid::MAX_ENTRIES`]) stands for it. **Time**: with a clock,
 //! the probe is compensated and formatted again and timed; compensation runs on every core,
 //! formatting on one, and a job with machine dynamics computes its path twice. The concave-zone
 //! report and the accuracy analysis are not in the estimate (they have their own bounds:
@@ -114,6 +116,8 @@ impl Planner {
             fts_table_bytes: split
                 .then(|| crate::nc::fts_table::HEADER.len() as u64 + (w.fts_row * n) as u64),
             dynamics_memory_bytes: (passes == 2).then(|| path_points * DYNAMICS_BYTES_PER_POINT),
+            fts_grid_bytes: split
+                .then(|| crate::nc::fts_grid::max_bytes(dynamics::fts_grid::MAX_ENTRIES)),
             seconds,
         })
     }

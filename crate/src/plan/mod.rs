@@ -117,6 +117,11 @@ pub struct Sinks<'a> {
     pub children: Option<&'a mut dyn ChildFiles>,
     /// The stem of the child programs' names (`STEM-1.nc`); default the job's name.
     pub child_stem: Option<String>,
+    /// The servo's gridded table as PMAC text ([`crate::nc::fts_grid::write_pmac`]), written by
+    /// [`Planner::run_with_dynamics`] for a split path.
+    pub fts_grid: Option<&'a mut dyn Write>,
+    /// The same grid as CSV ([`crate::nc::fts_grid::write_csv`]).
+    pub fts_grid_csv: Option<&'a mut dyn Write>,
 }
 
 /// A checked job, ready to plan: its [`ToolPath`] (which it dereferences to) and the
@@ -271,6 +276,9 @@ impl Planner {
     /// for them ([`crate::dynamics::wanted`]): a first pass plans the path into memory,
     /// analyses and splits it, the second writes it with the slide's share and the servo's
     /// word (and the servo's table). The report carries the dynamics; the progress runs twice.
+    /// With a split path and a sink for the gridded table (or `output.fts_grid` in the job),
+    /// the grid is sized after the dynamics ([`crate::dynamics::fts_grid`]), written, and its
+    /// figures reported (`dynamics.fts_grid`).
     pub fn run_with_dynamics(
         &self,
         sinks: Sinks,
@@ -279,7 +287,6 @@ impl Planner {
         if !crate::dynamics::wanted(self.job()) {
             return self.run(sinks, progress);
         }
-        let dynamics = Dynamics::run(&self.path, progress)?;
         let Sinks {
             nc,
             csv,
@@ -287,8 +294,21 @@ impl Planner {
             fts_table,
             children,
             child_stem,
+            fts_grid,
+            fts_grid_csv,
             ..
         } = sinks;
+        let grid =
+            fts_grid.is_some() || fts_grid_csv.is_some() || self.job().output.fts_grid.is_some();
+        let dynamics = Dynamics::run_with_grid(&self.path, grid, progress)?;
+        if let Some(g) = &dynamics.fts_grid {
+            if let Some(out) = fts_grid {
+                crate::nc::fts_grid::write_pmac(out, &g.table, &g.comments)?;
+            }
+            if let Some(out) = fts_grid_csv {
+                crate::nc::fts_grid::write_csv(out, &g.table)?;
+            }
+        }
         let sinks = Sinks {
             nc: nc.map(|w| w as &mut dyn Write),
             csv: csv.map(|w| w as &mut dyn Write),
@@ -297,6 +317,7 @@ impl Planner {
             fts_table: fts_table.map(|w| w as &mut dyn Write),
             children: children.map(|c| c as &mut dyn ChildFiles),
             child_stem,
+            ..Default::default()
         };
         let mut header = self.header();
         header.lines.extend(dynamics.report.header_lines());

@@ -20,7 +20,8 @@
 //! - [`Closing`]: the brute-force morphological closing of a radial section by the nose, the
 //!   oracle of the concave-zone report (its docs give its accuracy).
 //! - [`field_error`] and [`check_example_jobs`]: a surface's JSON that must be refused, and the
-//!   example jobs of the documentation that must plan.
+//!   example jobs of the documentation that must plan; [`coarse_grid_fts`], the example split
+//!   job coarsened for a debug build.
 //! - [`half_unit`], [`c_error`] and [`split_program`]: NC words against planned values, and a
 //!   program split between the slide and the fast tool servo.
 
@@ -427,6 +428,17 @@ pub fn example_job(file: &str) -> Job {
     let mut job = Job::from_json(&text).unwrap_or_else(|e| panic!("{file}: {e}"));
     job.load_files(|p| std::fs::read_to_string(format!("{dir}/{p}")).map_err(|e| e.to_string()))
         .unwrap_or_else(|e| panic!("{file}: {e}"));
+    job
+}
+
+/// The example split job `sinusoid-grid-fts.json` coarsened for a debug build: 200 revolutions
+/// of 512 points (102 401 points) instead of 800 of 1024.
+pub fn coarse_grid_fts() -> Job {
+    let mut job = example_job("sinusoid-grid-fts.json");
+    job.strategy.feed_mm_per_rev = 0.02;
+    job.strategy.sampling = spiralcam::job::Sampling::ConstantAngle {
+        points_per_rev: 512,
+    };
     job
 }
 

@@ -38,6 +38,7 @@ fn draw(p: Progress) {
     let items = match p.stage {
         Stage::Bands => "circles",
         Stage::Zones => "sections and zones",
+        Stage::FtsGrid => "passes (at most)",
         _ => "points",
     };
     eprint!(

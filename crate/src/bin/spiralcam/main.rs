@@ -1,8 +1,8 @@
 //! The spiralcam command-line tool.
 //!
 //! ```text
-//! spiralcam plan JOB.json [--nc FILE] [--csv FILE] [--fts-csv FILE] [--report FILE]
-//!                         [--max-output-gb G] [--max-points N] [--max-seconds S]
+//! spiralcam plan JOB.json [--nc FILE] [--csv FILE] [--fts-csv FILE] [--fts-table FILE]
+//!                         [--report FILE] [--max-output-gb G] [--max-points N] [--max-seconds S]
 //! spiralcam analyse JOB.json [--report FILE] [--maps PREFIX]
 //! spiralcam sag JOB.json --at POINTS.csv
 //! ```
@@ -28,8 +28,8 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 const USAGE: &str = "usage:
-  spiralcam plan JOB.json [--nc FILE] [--csv FILE] [--fts-csv FILE] [--report FILE]
-                          [--max-output-gb G] [--max-points N] [--max-seconds S]
+  spiralcam plan JOB.json [--nc FILE] [--csv FILE] [--fts-csv FILE] [--fts-table FILE]
+                          [--report FILE] [--max-output-gb G] [--max-points N] [--max-seconds S]
   spiralcam analyse JOB.json [--report FILE] [--maps PREFIX]
   spiralcam sag JOB.json --at POINTS.csv
   spiralcam help [COMMAND] | COMMAND --help | --version";

@@ -6,17 +6,21 @@ use spiralcam::nc::program::ChildFiles;
 use spiralcam::plan::{Limits, Planner, Sinks};
 use spiralcam::report::Outputs;
 use std::io::Write;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// The command's help.
 pub const HELP: &str =
-    "spiralcam plan JOB.json [--nc FILE] [--csv FILE] [--fts-csv FILE] [--report FILE]
-                        [--max-output-gb G] [--max-points N] [--max-seconds S]
+    "spiralcam plan JOB.json [--nc FILE] [--csv FILE] [--fts-csv FILE] [--fts-table FILE]
+                        [--report FILE] [--max-output-gb G] [--max-points N] [--max-seconds S]
 
 Plans the job and writes the files asked for: the NC program, the point table (CSV), the
-fast tool servo's table (c_deg,x_mm,w_mm; split jobs only) and the report (JSON; standard
-output when --report is not given). With strategy.split or machine limits the report
-carries the spectrum, the split and the axis checks.
+fast tool servo's table (c_deg,x_mm,w_mm; split jobs only), its gridded table (W over
+spindle angle x X as a PMAC 2-D compensation table, DEFINE COMP, and the same grid as CSV
+beside it, FILE with the extension .csv; split jobs only; output.fts_grid sets its
+tolerance, counts and motors) and the report (JSON; standard output when --report is not
+given). With strategy.split or machine limits the report carries the spectrum, the split
+and the axis checks, and with --fts-table the grid's size and interpolation error.
 
 Before any point is computed the job is admitted: its points, the size of each file and the
 time are estimated and printed on standard error, and a job beyond the limits is refused
@@ -31,7 +35,20 @@ interrupted run (Ctrl-C) leaves nothing behind. Exit status: 0 done, 1 the job o
 wrong, 2 the command line is wrong, 130 interrupted.";
 
 /// The options naming files, in the order they are written.
-const FILES: [&str; 4] = ["--nc", "--csv", "--fts-csv", "--report"];
+const FILES: [&str; 5] = ["--nc", "--csv", "--fts-csv", "--fts-table", "--report"];
+
+/// What names the CSV beside the gridded table, in messages.
+const GRID_CSV: &str = "--fts-table (its CSV)";
+
+/// The writer of an output, as a sink.
+fn writer(o: &mut OutputFile) -> &mut dyn Write {
+    &mut o.writer
+}
+
+/// The CSV beside the gridded table `table`: its name with the extension `.csv`.
+pub fn grid_csv_path(table: &Path) -> PathBuf {
+    table.with_extension("csv")
+}
 
 pub fn run(words: &[String]) -> Result<(), Failure> {
     let args = crate::args::parse(
@@ -40,6 +57,7 @@ pub fn run(words: &[String]) -> Result<(), Failure> {
             "--nc",
             "--csv",
             "--fts-csv",
+            "--fts-table",
             "--report",
             "--max-output-gb",
             "--max-points",
@@ -54,7 +72,7 @@ pub fn run(words: &[String]) -> Result<(), Failure> {
         limits.max_points = (n as u64).min(limits.max_points);
     }
     limits.max_seconds = args.positive("--max-seconds")?;
-    let targets: Vec<Target> = FILES
+    let mut targets: Vec<Target> = FILES
         .iter()
         .filter_map(|&flag| {
             args.path(flag).map(|p| Target {
@@ -63,12 +81,21 @@ pub fn run(words: &[String]) -> Result<(), Failure> {
             })
         })
         .collect();
+    let grid_csv = args.path("--fts-table").map(grid_csv_path);
+    if let Some(path) = &grid_csv {
+        targets.push(Target {
+            flag: GRID_CSV,
+            path: path.clone(),
+        });
+    }
     check_targets(&targets, &[])?;
     let (job, inputs) = read_job(&args.job)?;
-    if args.path("--fts-csv").is_some() && job.strategy.split.is_none() {
-        return Err(Failure::Usage(
-            "--fts-csv needs a split path: set strategy.split in the job".into(),
-        ));
+    for flag in ["--fts-csv", "--fts-table"] {
+        if args.path(flag).is_some() && job.strategy.split.is_none() {
+            return Err(Failure::Usage(format!(
+                "{flag} needs a split path: set strategy.split in the job"
+            )));
+        }
     }
     check_targets(&targets, &inputs)?;
     let mut progress = bar::callback();
@@ -80,6 +107,7 @@ pub fn run(words: &[String]) -> Result<(), Failure> {
         nc: args.path("--nc").is_some(),
         csv: args.path("--csv").is_some(),
         fts_table: args.path("--fts-csv").is_some(),
+        fts_grid: args.path("--fts-table").is_some(),
     };
     eprintln!("spiralcam: {}", cost.summary(outputs));
     limits
@@ -90,14 +118,18 @@ pub fn run(words: &[String]) -> Result<(), Failure> {
     let mut children = args
         .path("--nc")
         .map(|main| ChildOutputs::beside(main, inputs.clone()));
+    let mut grid = create("--fts-table")?;
+    let mut grid_csv = grid_csv.as_deref().map(OutputFile::create).transpose()?;
     let sinks = Sinks {
-        nc: nc.as_mut().map(|o| &mut o.writer as &mut dyn Write),
-        csv: csv.as_mut().map(|o| &mut o.writer as &mut dyn Write),
+        nc: nc.as_mut().map(writer),
+        csv: csv.as_mut().map(writer),
         display: None,
         z_slide: None,
-        fts_table: fts.as_mut().map(|o| &mut o.writer as &mut dyn Write),
         child_stem: children.as_ref().map(|c| c.stem.clone()),
         children: children.as_mut().map(|c| c as &mut dyn ChildFiles),
+        fts_table: fts.as_mut().map(writer),
+        fts_grid: grid.as_mut().map(writer),
+        fts_grid_csv: grid_csv.as_mut().map(writer),
     };
     let planned = planner.run_with_dynamics(sinks, &mut progress);
     bar::end();
@@ -107,7 +139,7 @@ pub fn run(words: &[String]) -> Result<(), Failure> {
     if let Some(children) = children {
         children.commit()?;
     }
-    for output in [nc, csv, fts].into_iter().flatten() {
+    for output in [nc, csv, fts, grid, grid_csv].into_iter().flatten() {
         output.commit()?;
     }
     for w in &report.warnings {

@@ -7,9 +7,9 @@
 //!   its type and the types read) and lie in the system's frame (not behind a coordinate break).
 //! - **The piece and the frame** (`part.cut`, [`super::cut`]): the piece (optic or mould) is
 //!   required for a refracting surface and defaults to the optic for a mirror; the frame
-//!   follows from the side the piece's material lies on ([`Optics::material_side`]): the optic
-//!   is cut from the other side, a mould from that side; from −Z the design is turned 180°
-//!   about Y.
+//!   follows from the side the piece's material lies on
+//!   ([`crate::surface::import::Optics::material_side`]): the optic is cut from the other side,
+//!   a mould from that side; from −Z the design is turned 180° about Y.
 //! - **The diameter**: the one asked for, else twice the file's semi-diameter; a decentred
 //!   aperture needs the diameter given (the spindle turns the part about the vertex).
 //! - **Checks**: the job validates, its data files are read, and the surface is defined over
@@ -144,8 +144,8 @@ pub enum DesignError {
     /// assert!(e.to_string().contains("choose optic (its own surface, cut from the air side) or mould"), "{e}");
     /// ```
     #[error(
-        "{file}: surface {number} is refracting ({why}): choose optic (its own surface, cut from \
-         the air side) or mould (an insert forming it, cut from the glass side)"
+        "{file}: surface {number} is {why}: choose optic (its own surface, cut from the air side) \
+         or mould (an insert forming it, cut from the glass side)"
     )]
     ChoosePiece {
         /// The design file.

@@ -130,7 +130,6 @@ impl EvenAsphere {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::surface::Surface;
 
     #[test]
     fn an_r2_term_makes_an_odd_asphere_with_the_same_sag() {

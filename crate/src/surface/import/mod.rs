@@ -163,7 +163,7 @@ impl Optics {
         if !self.known {
             return (
                 1.0,
-                "the file says nothing of the media: the piece's material is taken to lie on \
+                "between media the file does not give: the piece's material is taken to lie on \
                  +Z (light along +Z, material after the surface)"
                     .into(),
             );
@@ -344,7 +344,12 @@ mod tests {
         let (side, why) = optics(false, Some("A"), Some("B"), true).material_side();
         assert_eq!(side, 1.0);
         assert!(why.contains("cemented"), "{why}");
-        assert!(Optics::unknown().material_side().1.contains("says nothing"));
+        assert!(
+            Optics::unknown()
+                .material_side()
+                .1
+                .contains("does not give")
+        );
     }
 
     #[test]

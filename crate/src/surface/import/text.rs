@@ -60,7 +60,7 @@ pub fn decode(bytes: &[u8]) -> Result<(String, Encoding), String> {
 
 /// UTF-16 units from byte pairs (after the 2-byte mark), then the text.
 fn utf16(rest: &[u8], unit: fn([u8; 2]) -> u16) -> Result<String, String> {
-    if rest.len() % 2 != 0 {
+    if !rest.len().is_multiple_of(2) {
         return Err(format!(
             "UTF-16 text of an odd number of bytes ({}): the last byte is cut off",
             rest.len() + 2

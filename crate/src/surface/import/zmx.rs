@@ -14,7 +14,7 @@
 //! spaces, `MIRR 2 0` on every surface, which is not a mirror).
 //!
 //! **Surface types** (the parameters as the OpticStudio User Guide defines them; lengths in lens
-//! units, converted to mm by [`super::convert`]):
+//! units, converted to mm by the shared conversion of `convert.rs`):
 //!
 //! | `TYPE` | read as | parameters |
 //! |---|---|---|

@@ -239,11 +239,7 @@ fn chosen<'a>(design: &'a Design, choice: &DesignChoice) -> Result<&'a DesignSur
             surfaces: summaries(design.surfaces.iter()),
         });
     }
-    let inner: Vec<&DesignSurface> = design
-        .surfaces
-        .iter()
-        .filter(|s| s.role == Role::Surface || design.surfaces.len() == 1)
-        .collect();
+    let inner = candidates(design);
     match inner.as_slice() {
         [one] => Ok(one),
         _ => Err(DesignError::ChooseSurface {
@@ -251,6 +247,24 @@ fn chosen<'a>(design: &'a Design, choice: &DesignChoice) -> Result<&'a DesignSur
             count: inner.len(),
             surfaces: summaries(design.surfaces.iter()),
         }),
+    }
+}
+
+/// The surfaces that could be meant when none is chosen: those between object and image (a
+/// design of one surface, a Grid Sag `.DAT`, that one).
+fn candidates(design: &Design) -> Vec<&DesignSurface> {
+    design
+        .surfaces
+        .iter()
+        .filter(|s| s.role == Role::Surface || design.surfaces.len() == 1)
+        .collect()
+}
+
+/// The surface [`job_from_design`] takes when none is chosen, if there is exactly one.
+pub fn default_surface(design: &Design) -> Option<usize> {
+    match candidates(design).as_slice() {
+        [one] => Some(one.number),
+        _ => None,
     }
 }
 

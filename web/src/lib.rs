@@ -1,11 +1,12 @@
 //! spiralcam in the browser: the wasm-bindgen API the page's worker calls to plan a job
 //! (`api`), and the wgpu renderer that draws the surface and the path on the page's canvas
 //! (`viewer`, WebGPU first, WebGL2 as the fallback) with its orbit [`camera`]. [`colormap`] is
-//! the one height colour scale shared by the shader and the page's legend. `api` and `viewer`
-//! exist only in the wasm32 build.
+//! the one height colour scale shared by the shader and the page's legend. [`design`] is the
+//! page's import of a designer's file. `api` and `viewer` exist only in the wasm32 build.
 
 pub mod camera;
 pub mod colormap;
+pub mod design;
 
 #[cfg(target_arch = "wasm32")]
 pub mod api;

@@ -609,6 +609,25 @@ fn even_terms(r: &Raw, scale: Scale, read: &mut Vec<String>) -> Vec<f64> {
     )
 }
 
+/// The normalisation radius in `XDAT 2` (> 0), in lens units, listed with `XDAT 1` read as
+/// `count`.
+fn norm_radius(r: &Raw, scale: Scale, count: &str, read: &mut Vec<String>) -> Result<f64, String> {
+    let norm = r.xdat.get(2);
+    if norm <= 0.0 {
+        return Err(format!(
+            "{}: the normalisation radius must be > 0",
+            r.xdat.show(2)
+        ));
+    }
+    read.push(format!("{}: {count}", r.xdat.show(1)));
+    read.push(format!(
+        "{}: normalisation radius {} mm",
+        r.xdat.show(2),
+        scale.length(norm)
+    ));
+    Ok(norm)
+}
+
 /// The Zernike terms of the extra data: `XDAT 1` their number, `XDAT 2` the normalisation
 /// radius, `XDAT 3…` Z1…; `None` without any. `max` is the convention's count.
 fn zernike_terms(
@@ -633,19 +652,7 @@ fn zernike_terms(
         ));
     }
     let n = n as usize;
-    let norm = r.xdat.get(2);
-    if norm <= 0.0 {
-        return Err(format!(
-            "{}: the normalisation radius must be > 0",
-            r.xdat.show(2)
-        ));
-    }
-    read.push(format!("{}: {n} Zernike terms", r.xdat.show(1)));
-    read.push(format!(
-        "{}: normalisation radius {} mm",
-        r.xdat.show(2),
-        scale.length(norm)
-    ));
+    let norm = norm_radius(r, scale, &format!("{n} Zernike terms"), read)?;
     let c = terms(&r.xdat, 3, n, scale, |_| 0, |i| format!("Z{}", i + 1), read);
     let beyond: Vec<usize> = r
         .xdat
@@ -965,19 +972,7 @@ fn extended_polynomial(
             r.xdat.show(*i)
         ));
     }
-    let norm = r.xdat.get(2);
-    if norm <= 0.0 {
-        return Err(format!(
-            "{}: the normalisation radius must be > 0",
-            r.xdat.show(2)
-        ));
-    }
-    read.push(format!("{}: {n} terms", r.xdat.show(1)));
-    read.push(format!(
-        "{}: normalisation radius {} mm",
-        r.xdat.show(2),
-        scale.length(norm)
-    ));
+    let norm = norm_radius(r, scale, &format!("{n} terms"), read)?;
     let mut terms = Vec::new();
     for i in 1..=n {
         let v = r.xdat.get(i + 2);

@@ -89,7 +89,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .collect();
     }
     for file in jobs {
-        let job = Job::from_json(&std::fs::read_to_string(&file)?)?;
+        let mut job = Job::from_json(&std::fs::read_to_string(&file)?)?;
+        let here = Path::new(&file).parent().unwrap_or(Path::new("."));
+        job.load_files(|p| std::fs::read_to_string(here.join(p)).map_err(|e| e.to_string()))?;
         let exact = job.build_surface()?;
         let r = job.part_radius_mm();
         let grid = sample(exact.as_ref(), &GridExtent::square(N, N, 1.02 * r))?;

@@ -3,14 +3,16 @@
 // edit or Cancel terminates the worker and starts a fresh one. The page's state is mirrored on
 // `document.body.dataset.state` ("loading", "planning", "done", "analysing", "analysed", "error",
 // "cancelled") and `window.spiralcam` (plans started and finished, the report, the accuracy
-// analysis, the backend) for the browser tests.
+// analysis, the backend, what the last design import read) for the browser tests. "Import
+// design…" is web/import.js.
 
 import init, { Viewer, default_job, colormap_css, colormap_stops, machine_presets, version } from '../pkg/spiralcam_web.js';
 import { JobForm } from './form.js';
+import { bindImport } from './import.js';
 import { drawPlot, prepare } from './plots.js';
 
 const $ = (id) => document.getElementById(id);
-const status = (window.spiralcam = { state: 'loading', backend: null, report: null, analysis: null, started: 0, plans: 0, error: null });
+const status = (window.spiralcam = { state: 'loading', backend: null, report: null, analysis: null, started: 0, plans: 0, error: null, imported: null });
 
 function setState(s) {
   status.state = s;
@@ -684,11 +686,21 @@ async function main() {
     if (!file) return;
     try {
       form.show(JSON.parse(await file.text()));
+      $('import-listing').hidden = true;
       schedule();
     } catch (err) {
       showFailure(new Error(`${file.name}: ${err.message}`));
     }
     e.target.value = '';
+  });
+
+  bindImport((job, listing) => {
+    form.show(job);
+    status.imported = listing;
+    const shown = $('import-listing');
+    shown.textContent = listing.join('\n');
+    shown.hidden = false;
+    schedule();
   });
 
   form.show(JSON.parse(default_job()));

@@ -107,6 +107,7 @@ export const SURFACES = {
       { kind: 'radius', suffix: '_x', label: 'Rotation (X)' },
       { kind: 'radius', suffix: '_y', label: 'Profile (Y)' },
       { key: 'conic_y', label: 'Profile conic ky', unit: '', optionalNumber: true },
+      { key: 'profile_coefficients', kind: 'list', label: 'Profile terms α1, α2, … on y², y⁴, … (mm^(1−2i))', hint: 'OpticStudio Toroidal parameters 2–8; at most 10; blank: none' },
     ],
   },
   off_axis_conic: {
@@ -319,6 +320,12 @@ const SECTIONS = [
     { path: 'part.diameter_mm', label: 'Diameter', unit: 'mm', hint: '> 0' },
     { path: 'part.beyond_edge', label: 'Beyond the edge', options: ['', 'surface'], optionLabels: ['no material (the nose\'s arc is cut at the edge)', 'the design continues'], optional: true, hint: 'what the nose meets beyond part.diameter_mm / 2' },
     { path: 'part.normal_axis_at_mm', label: 'Spindle axis: normal at x, y', unit: 'mm', hint: 'blank: the design\'s Z; "x, y": the part turned about the design\'s normal there (paper 001)', optional: true, list: true },
+    {
+      path: 'part.cut', role: 'cut', label: 'Cut',
+      options: ['', 'optic design', 'optic turned', 'mould design', 'mould turned'],
+      optionLabels: ['not stated (the design\'s frame)', 'optic, in the design\'s frame', 'optic, turned 180° about Y', 'mould, in the design\'s frame', 'mould, turned 180° about Y'],
+      hint: 'turned: x → −x, z → −z, a rotation (never a mirror), when the tool comes from the design\'s −Z side; "Import design…" sets it',
+    },
   ]],
   ['Tool', [
     { path: 'tool.nose_radius_mm', label: 'Nose radius r', unit: 'mm', hint: '≥ 0' },
@@ -547,6 +554,9 @@ export class JobForm {
     } else if (f.json) {
       control = el('textarea', { rows: f.rows || 4, spellcheck: false, class: 'json' });
       control.value = JSON.stringify(value ?? [], null, 1).replace(/\n\s*/g, ' ');
+    } else if (f.role === 'cut') {
+      control = select(f.options, f.optionLabels);
+      control.value = value ? `${value.piece} ${value.frame}` : '';
     } else if (f.options) {
       control = select(f.options, f.optionLabels);
       control.value = value === undefined ? '' : String(value);
@@ -790,6 +800,9 @@ export class JobForm {
         delete this.job.program;
       }
       this.show(this.job);
+    } else if (t.dataset.role === 'cut') {
+      const [piece, frame] = t.value.split(' ');
+      set(this.job, 'part.cut', t.value ? { piece, frame } : undefined);
     } else if (t.dataset.role === 'split') {
       const cutoff = this.job.strategy.split?.cutoff_hz ?? this.job.machine.z_slide?.bandwidth_hz ?? 20;
       if (!t.value) delete this.job.strategy.split;

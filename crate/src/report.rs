@@ -256,6 +256,8 @@ pub struct Report {
     pub job: String,
     /// The surface, restated.
     pub surface: String,
+    /// What is cut and in which frame (`part.cut`), restated; null when the job does not say.
+    pub cut: Option<String>,
     /// The NC dialect.
     pub dialect: String,
     /// Points on the path.
@@ -372,6 +374,7 @@ impl Report {
         Self {
             job: job.name.clone(),
             surface: tool_path.surface().describe(),
+            cut: job.part.cut.map(|c| c.describe()),
             dialect: job.output.style().name.to_string(),
             points: stats.points,
             revolutions: tool_path.spiral().revolutions(),

@@ -1,16 +1,18 @@
 // Every surface family through the page's form (WebGL2): choosing a family plans its defaults
 // without an error, the accuracy analysis shows its figures and maps, the data families (STEP,
-// Grid Sag, scattered points) plan from files chosen in the page, the scattered form drops the
+// Grid Sag, scattered points) plan from files chosen in the page, "Import design…" fills the
+// form with the job `spiralcam import` writes from the same files, the scattered form drops the
 // RBF options when another interpolator is chosen, and the progressive-lens preset shows its
 // power maps.
 
 import { after, before, describe, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { mkdtempSync, writeFileSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import {
-  ROOT, download, launch, openPage, planWithCli, replan, setField, startServer, waitForState,
+  ROOT, download, launch, openPage, planWithCli, replan, setField, spiralcamCli, startServer, waitForState,
 } from './harness.mjs';
 
 /** Sphere radius of the scattered test data, mm. */
@@ -114,6 +116,41 @@ describe('surface families on the page', () => {
     const report = await page.evaluate(() => window.spiralcam.report);
     assert.match(report.surface, /^grid sag \(Zemax DAT\) from inline data: 33 × 33 points/);
     assert.equal((await currentJob()).surface.type, 'grid_sag');
+  });
+
+  test('a design imported in the page is the job the command line imports', async () => {
+    // A lens whose rear surface is a Grid Sag on a sphere; the .DAT chosen with the .zmx.
+    const dir = mkdtempSync(join(tmpdir(), 'spiralcam-design-'));
+    const zmx = join(dir, 'lens.zmx');
+    writeFileSync(zmx, 'UNIT MM\nSURF 0\nSURF 1\n  TYPE EVENASPH\n  CURV 0.02\n  GLAS N-BK7\n  DIAM 2\n'
+      + 'SURF 2\n  TYPE GRIDSAG\n  CURV -0.01\n  UDAD "grid-sag.dat"\n  DIAM 2\nSURF 3\n');
+    const dat = join(ROOT, 'crate/jobs/grid-sag.dat');
+    writeFileSync(join(dir, 'grid-sag.dat'), readFileSync(dat));
+    await page.setInputFiles('#import-design', [zmx, dat]);
+    await page.locator('#import-dialog').waitFor({ state: 'visible' });
+    const listed = await page.$$eval('#import-surface option', (os) => os.map((o) => o.textContent));
+    assert.deepEqual(listed, ['0 STANDARD (object)', '1 EVENASPH, semi-diameter 2 mm', '2 GRIDSAG, semi-diameter 2 mm', '3 STANDARD (image)']);
+    await page.selectOption('#import-surface', '2');
+    // A refracting surface: the piece must be chosen; the core's message says so.
+    await page.click('#import-fill');
+    assert.match(await page.textContent('#import-error'), /choose optic \(its own surface, cut from the air side\) or mould/);
+    await page.selectOption('#import-cut', 'mould');
+    await replan(page, () => page.click('#import-fill'));
+    assert.equal(await page.locator('#import-dialog').isVisible(), false);
+    assert.match(await page.textContent('#import-listing'), /surface 2 GRIDSAG/);
+    assert.equal(await page.inputValue('[data-field="part.cut"]'), 'mould turned');
+    const job = await currentJob();
+    // The command line, from the same files: the same job, its grid named instead of carried.
+    const out = join(dir, 'cli.json');
+    execFileSync(spiralcamCli(), ['import', zmx, '--surface', '2', '--cut', 'mould', '--out', out]);
+    const cli = JSON.parse(readFileSync(out, 'utf8'));
+    assert.deepEqual(cli.surface.data, { path: 'cli.grid.DAT' });
+    assert.deepEqual(job.surface.data, { text: readFileSync(dat, 'utf8') });
+    cli.surface.data = job.surface.data;
+    assert.deepEqual(job, cli);
+    assert.match(await page.evaluate(() => window.spiralcam.report.cut), /^a mould insert forming the surface, the design turned 180° about Y/);
+    await replan(page, () => page.selectOption('[data-field="part.cut"]', ''));
+    assert.equal((await currentJob()).part.cut, undefined);
   });
 
   test('scattered points chosen in the page regenerate the sphere they sample', async () => {

@@ -126,13 +126,19 @@ export async function download(page, selector) {
 }
 
 let cli = null;
-/** Runs `spiralcam plan JOB --nc … --csv …` and returns { nc, csv } as Buffers; with `fts`
- * (a split job) also `--fts-csv …`, returned as `fts`. */
-export function planWithCli(jobPath, { fts = false } = {}) {
+/** The command-line tool's path, built (debug) on first use. */
+export function spiralcamCli() {
   if (!cli) {
     execFileSync('cargo', ['build', '--quiet', '--locked', '-p', 'spiralcam', '--bin', 'spiralcam'], { cwd: ROOT, stdio: 'inherit' });
     cli = join(ROOT, 'target/debug/spiralcam');
   }
+  return cli;
+}
+
+/** Runs `spiralcam plan JOB --nc … --csv …` and returns { nc, csv } as Buffers; with `fts`
+ * (a split job) also `--fts-csv …`, returned as `fts`. */
+export function planWithCli(jobPath, { fts = false } = {}) {
+  spiralcamCli();
   const dir = mkdtempSync(join(tmpdir(), 'spiralcam-cli-'));
   const nc = join(dir, 'out.nc');
   const csv = join(dir, 'out.csv');

@@ -447,6 +447,45 @@ pub fn colormap_stops() -> Vec<f32> {
     crate::colormap::STOPS.iter().flatten().copied().collect()
 }
 
+/// A designer's file (`name` says its format: `.zmx`, `.seq` or `.DAT`) read for the page's
+/// "Import design…": its surfaces as JSON ([`crate::design::design_surfaces`]).
+#[wasm_bindgen]
+pub fn design_surfaces(name: &str, bytes: &[u8]) -> Result<String, JsError> {
+    crate::design::design_surfaces(name, bytes).map_err(|e| JsError::new(&e))
+}
+
+/// A job from surface `surface` (`undefined`: the only one) of a designer's file, cut as
+/// `piece` (`"optic"`, `"mould"` or `""`) with the part's diameter `diameter_mm`
+/// (`undefined`: twice the semi-diameter); `file_names` and `file_texts` are the other files
+/// chosen with it (a Grid Sag `.DAT` the `.zmx` names). JSON `{job, listing, surface}`
+/// ([`crate::design::import_design`]), the job `spiralcam import` writes with its data carried
+/// as text.
+#[wasm_bindgen]
+pub fn import_design(
+    name: &str,
+    bytes: &[u8],
+    surface: Option<u32>,
+    piece: &str,
+    diameter_mm: Option<f64>,
+    file_names: Vec<String>,
+    file_texts: Vec<String>,
+) -> Result<String, JsError> {
+    let side: Vec<crate::design::SideFile> = file_names
+        .into_iter()
+        .zip(file_texts)
+        .map(|(name, text)| crate::design::SideFile { name, text })
+        .collect();
+    crate::design::import_design(
+        name,
+        bytes,
+        surface.map(|s| s as usize),
+        piece,
+        diameter_mm,
+        &side,
+    )
+    .map_err(|e| JsError::new(&e))
+}
+
 /// Checks `job` without planning; throws the first field error.
 #[wasm_bindgen]
 pub fn check_job(job: JsValue) -> Result<(), JsError> {

@@ -2,12 +2,13 @@
 //! (`api`), and the wgpu renderer that draws the surface and the path on the page's canvas
 //! (`viewer`, WebGPU first, WebGL2 as the fallback) with its orbit [`camera`]. [`colormap`] is
 //! the one height colour scale shared by the shader and the page's legend; [`bundle`] zips a
-//! program and its child programs into one download. `api` and `viewer`
-//! exist only in the wasm32 build.
+//! program and its child programs into one download; [`design`] is the page's import of a
+//! designer's file. `api` and `viewer` exist only in the wasm32 build.
 
 pub mod bundle;
 pub mod camera;
 pub mod colormap;
+pub mod design;
 
 #[cfg(target_arch = "wasm32")]
 pub mod api;

@@ -13,8 +13,13 @@
 //! - [`strategy`]: `strategy` (feed, sampling, direction, compensation, split);
 //! - [`machine`]: `machine` (spindle, slides, servo, block rate) and the example presets;
 //! - [`output`]: `output` (dialect, decimals, signs, feed mode, approach);
-//! - [`fts_grid`]: `output.fts_grid` (the servo's gridded table: tolerance, counts, motors).
+//! - [`fts_grid`]: `output.fts_grid` (the servo's gridded table: tolerance, counts, motors);
+//! - [`program`]: `program` (set-up words, heights, approach, passes, loop, child programs);
+//! - [`cut`]: `part.cut` (the optic or a mould, the design's frame or turned 180° about Y);
+//! - [`design`]: a job from a designer's file ([`crate::surface::import`]).
 
+pub mod cut;
+pub mod design;
 pub mod fts_grid;
 pub mod machine;
 pub mod output;
@@ -22,6 +27,7 @@ pub mod program;
 pub mod strategy;
 pub mod tool;
 
+pub use cut::{CutSpec, Frame, Piece};
 pub use fts_grid::FtsGridSpec;
 pub use machine::MachineSpec;
 pub use output::{Dialect, FeedMode, OutputSpec};
@@ -30,7 +36,7 @@ pub use strategy::{Compensation, Direction, Sampling, SplitSpec, StrategySpec};
 pub use tool::{ToolAngles, ToolSpec};
 
 use crate::field::{FieldError, finite, join_path, non_negative, positive};
-use crate::surface::{PartDisc, Reframed, Surface, SurfaceSpec};
+use crate::surface::{PartDisc, Reframed, Surface, SurfaceSpec, Turned};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
@@ -76,6 +82,9 @@ pub struct PartSpec {
     /// being mounted with that point on the axis ([`crate::surface::Reframed`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub normal_axis_at_mm: Option<[f64; 2]>,
+    /// What is cut and in which frame ([`cut`]): absent, the design's frame, nothing stated.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cut: Option<CutSpec>,
     /// What lies beyond the part's edge (its radius): `none` (default: no material; the nose's
     /// arc is cut at the edge) or `surface` (the design continues, as on a blank larger than the
     /// clear aperture: the arc rests on it there too).
@@ -184,9 +193,22 @@ impl Job {
     }
 
     /// The surface as the spindle sees it: the design, or with `part.normal_axis_at_mm` the
-    /// design seen along its normal there. The design's features (lenslets kept, checks against
-    /// the part) are laid out over the part disc about that point.
+    /// design seen along its normal there, then turned 180° about Y when `part.cut.frame` is
+    /// `turned` ([`Turned`]). The design's features (lenslets kept, checks against the part)
+    /// are laid out over the part disc about that point.
     pub fn build_surface(&self) -> Result<Box<dyn Surface>, FieldError> {
+        let design = self.design_surface()?;
+        match self.part.cut {
+            Some(CutSpec {
+                frame: Frame::Turned,
+                ..
+            }) => Ok(Box::new(Turned::new(design))),
+            _ => Ok(design),
+        }
+    }
+
+    /// The surface in the design's frame: the spindle's view before `part.cut` turns it.
+    pub fn design_surface(&self) -> Result<Box<dyn Surface>, FieldError> {
         let radius_mm = self.part_radius_mm();
         let Some([x_mm, y_mm]) = self.part.normal_axis_at_mm else {
             return self.surface.build(radius_mm);

@@ -235,6 +235,9 @@ impl Planner {
             ],
             spindle_rpm: j.machine.spindle_rpm,
         };
+        if let Some(cut) = j.part.cut {
+            header.lines.insert(3, format!("cut: {}", cut.describe()));
+        }
         if let Some(split) = &j.strategy.split {
             let how = match split {
                 SplitSpec::Symmetric => "the rotationally symmetric part on Z".to_string(),

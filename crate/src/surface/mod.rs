@@ -20,7 +20,8 @@
 //! ([`nurbs`]) and STEP faces ([`step_face`]), scattered data ([`scattered`], paper 004's
 //! RBF), Zemax Grid Sag data ([`grid_sag`], with its `.DAT` reader and writer and the export of
 //! any surface to a grid), and any base with decentred terms ([`composite`]); [`reframed`] sees
-//! any of them along its normal at a point. A spec is read from its `"type"` by
+//! any of them along its normal at a point, and [`turned`] any of them turned 180° about Y (the
+//! part cut from the side its +Z points away from). A spec is read from its `"type"` by
 //! [`family_tag`].
 //!
 //! Measured data: [`measured`] reads what metrology hands back after a cut (CSV point clouds,
@@ -36,6 +37,7 @@ pub mod compound_eye;
 pub mod data_file;
 pub mod family_tag;
 pub mod grid_sag;
+pub mod import;
 pub mod jet;
 pub mod lens_array;
 pub mod measured;
@@ -54,6 +56,7 @@ pub mod sinusoid;
 pub mod step_face;
 pub mod tilted_flat;
 pub mod toroid;
+pub mod turned;
 pub mod xy_polynomial;
 pub mod zernike;
 pub mod zoned_asphere;
@@ -83,6 +86,7 @@ pub use sinusoid::{Sinusoid, SinusoidSpec};
 pub use step_face::{StepFace, StepFaceSpec};
 pub use tilted_flat::{TiltedFlat, TiltedFlatSpec};
 pub use toroid::{Toroid, ToroidSpec};
+pub use turned::Turned;
 pub use xy_polynomial::{XyPolynomial, XyPolynomialSpec};
 pub use zernike::{Zernike, ZernikeSpec};
 pub use zoned_asphere::{ZonedAsphere, ZonedAsphereSpec};

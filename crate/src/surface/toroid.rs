@@ -1,6 +1,9 @@
-//! Toroid (Zemax "Toroidal" surface, without its polynomial terms): a conic profile in the YZ
-//! plane, `z_y(y) = cy·y² / (1 + √(1 − (1+ky)·cy²·y²))`, swept about an axis parallel to Y
-//! that crosses the Z axis at `z = Rx` (the radius of rotation, cx = 1/Rx).
+//! Toroid (OpticStudio's "Toroidal" surface, without its Zernike terms): a profile in the YZ
+//! plane, `z_y(y) = cy·y² / (1 + √(1 − (1+ky)·cy²·y²)) + Σᵢ αᵢ·y²ⁱ`, a conic plus even powers
+//! of y from y² (OpticStudio's parameters 2–8, α1 … α7 on y² … y¹⁴: "similar to the even
+//! aspheric surface sag formula, except the sixteenth order term has been omitted, and the
+//! coordinate argument is y", OpticStudio User Guide, "Toroidal"), swept about an axis parallel
+//! to Y that crosses the Z axis at `z = Rx` (the radius of rotation, cx = 1/Rx).
 //!
 //! A profile point lies at distance `d·Rx` from the axis, `d = 1 − cx·z_y`; swept about the
 //! axis it traces the circle `(Rx − z)² + x² = (Rx − z_y)²`, so the sag is that of a circle of
@@ -9,8 +12,9 @@
 //! the cancellation-free form of `Rx − √((Rx − z_y)² − x²)`, and a cylinder (the profile
 //! extruded along X) when cx = 0. Derivatives: `F_x = e·x/w`, `F_xx = e/w³`,
 //! `F_e = x²/(w(1+w))`, `F_xe = x/w³`, `F_ee = e·x⁴(1+2w)/(w³(1+w)²)`, with
-//! `e′ = e²·z_y′`, `e″ = 2e³·z_y′² + e²·z_y″`, `z_y′ = cy·y/w_y`, `z_y″ = cy/w_y³`
-//! (`w_y = √(1 − (1+ky)cy²y²)`); then `∂z/∂y = z_y′ + F_e·e′`,
+//! `e′ = e²·z_y′`, `e″ = 2e³·z_y′² + e²·z_y″`, `z_y′ = cy·y/w_y + 2y·P′`,
+//! `z_y″ = cy/w_y³ + 2P′ + 4y²·P″` (`w_y = √(1 − (1+ky)cy²y²)`, `P(s) = Σ αᵢ·sⁱ` in s = y²);
+//! then `∂z/∂y = z_y′ + F_e·e′`,
 //! `∂²z/∂x∂y = F_xe·e′`, `∂²z/∂y² = z_y″ + F_ee·e′² + F_e·e″`.
 //!
 //! How it differs from the [`super::Biconic`]: every XZ section of a toroid is an exact circle
@@ -48,7 +52,14 @@ pub struct ToroidSpec {
     /// Conic constant ky of the profile, finite; default 0.
     #[serde(default)]
     pub conic_y: f64,
+    /// α1, α2, … of y², y⁴, … added to the profile, mm^(1−2i) (OpticStudio's Toroidal
+    /// parameters 2–8); at most [`MAX_PROFILE_TERMS`], default none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub profile_coefficients: Vec<f64>,
 }
+
+/// The most profile terms: α1 … α10 (y² … y²⁰).
+pub const MAX_PROFILE_TERMS: usize = 10;
 
 /// A toroid, validated.
 #[derive(Debug, Clone, PartialEq)]
@@ -58,6 +69,8 @@ pub struct Toroid {
     ky: f64,
     /// (1 + ky)·cy².
     py: f64,
+    /// α1, α2, … of y², y⁴, … (trailing zeros dropped).
+    alpha: Vec<f64>,
 }
 
 impl Toroid {
@@ -68,12 +81,42 @@ impl Toroid {
             [spec.curvature_x_per_mm, spec.curvature_y_per_mm],
         )?;
         let ky = finite("conic_y", spec.conic_y)?;
+        if spec.profile_coefficients.len() > MAX_PROFILE_TERMS {
+            return Err(FieldError::new(
+                "profile_coefficients",
+                format!("{} terms", spec.profile_coefficients.len()),
+                format!("at most {MAX_PROFILE_TERMS} terms (α1 … α{MAX_PROFILE_TERMS})"),
+            ));
+        }
+        for (i, &a) in spec.profile_coefficients.iter().enumerate() {
+            finite(
+                &format!("profile_coefficients[{i}] (α{}, y^{})", i + 1, 2 * i + 2),
+                a,
+            )?;
+        }
+        let mut alpha = spec.profile_coefficients.clone();
+        while alpha.last() == Some(&0.0) {
+            alpha.pop();
+        }
         Ok(Self {
             cx,
             cy,
             ky,
             py: (1.0 + ky) * cy * cy,
+            alpha,
         })
+    }
+
+    /// `[P, P′, P″]` of `P(s) = Σ αᵢ·sⁱ` at s = y², by Horner's rule.
+    fn polynomial(&self, s: f64) -> [f64; 3] {
+        let (mut p, mut dp, mut ddp) = (0.0, 0.0, 0.0);
+        for &a in self.alpha.iter().rev() {
+            ddp = ddp * s + 2.0 * dp;
+            dp = dp * s + p;
+            p = p * s + a;
+        }
+        // The loop gave Q(s) = Σ αᵢ·sⁱ⁻¹ and its derivatives: P = s·Q.
+        [s * p, p + s * dp, 2.0 * dp + s * ddp]
     }
 
     /// The profile `[z_y, z_y′, z_y″]` at y, or why it has none.
@@ -86,10 +129,12 @@ impl Toroid {
             ));
         }
         let w = q.sqrt();
+        let s = y * y;
+        let [p, p1, p2] = self.polynomial(s);
         Ok([
-            self.cy * y * y / (1.0 + w),
-            self.cy * y / w,
-            self.cy / (q * w),
+            self.cy * s / (1.0 + w) + p,
+            self.cy * y / w + 2.0 * y * p1,
+            self.cy / (q * w) + 2.0 * p1 + 4.0 * s * p2,
         ])
     }
 
@@ -151,8 +196,19 @@ impl Surface for Toroid {
                 1.0 / self.cx
             )
         };
+        let terms = if self.alpha.is_empty() {
+            String::new()
+        } else {
+            let a: Vec<String> = self
+                .alpha
+                .iter()
+                .enumerate()
+                .map(|(i, a)| format!("α{} {a}", i + 1))
+                .collect();
+            format!(" + {} on y², y⁴, …", a.join(", "))
+        };
         format!(
-            "toroid: YZ profile {}, ky {}, {sweep}",
+            "toroid: YZ profile {}, ky {}{terms}, {sweep}",
             describe_radius(self.cy),
             self.ky,
         )
@@ -197,6 +253,56 @@ mod tests {
         assert!((l.z + 16.0 / 20.0).abs() < 1e-15, "{}", l.z);
         assert_eq!((l.zx, l.zxx, l.zxy), (0.0, 0.0, 0.0));
         assert!(s.describe().contains("cylinder"));
+    }
+
+    #[test]
+    fn the_profile_terms_add_even_powers_of_y() {
+        // OpticStudio's toroid: α1 y² + α2 y⁴ + α3 y⁶ on the profile, then swept about Rx.
+        let alpha = [2e-3, -1e-5, 3e-7];
+        let s = toroid(ToroidSpec {
+            radius_x_mm: Some(30.0),
+            radius_y_mm: Some(-25.0),
+            conic_y: -0.5,
+            profile_coefficients: alpha.to_vec(),
+            ..Default::default()
+        })
+        .unwrap();
+        let profile = |y: f64| {
+            let c = -1.0 / 25.0;
+            c * y * y / (1.0 + (1.0 - 0.5 * c * c * y * y).sqrt())
+                + alpha[0] * y.powi(2)
+                + alpha[1] * y.powi(4)
+                + alpha[2] * y.powi(6)
+        };
+        let (x, y) = (2.5_f64, 3.5_f64);
+        // The section at y is a circle about the axis z = Rx through the profile point.
+        let zy = profile(y);
+        let z = 30.0 - ((30.0 - zy).powi(2) - x * x).sqrt();
+        assert!((s.sag(x, y).unwrap() - z).abs() < 1e-14);
+        assert!((s.sag(0.0, y).unwrap() - zy).abs() < 1e-15);
+        // Derivatives against central differences.
+        let h = 1e-5;
+        let l = s.local(x, y).unwrap();
+        let f = |x: f64, y: f64| s.local(x, y).unwrap();
+        let (py, my, px, mx) = (f(x, y + h), f(x, y - h), f(x + h, y), f(x - h, y));
+        assert!((l.zy - (py.z - my.z) / (2.0 * h)).abs() < 1e-9);
+        assert!((l.zyy - (py.zy - my.zy) / (2.0 * h)).abs() < 1e-8);
+        assert!((l.zxy - (py.zx - my.zx) / (2.0 * h)).abs() < 1e-8);
+        assert!((l.zxx - (px.zx - mx.zx) / (2.0 * h)).abs() < 1e-8);
+        assert!(
+            s.describe()
+                .contains("α1 0.002, α2 -0.00001, α3 0.0000003 on y²"),
+            "{}",
+            s.describe()
+        );
+        let e = toroid(ToroidSpec {
+            radius_x_mm: Some(30.0),
+            radius_y_mm: Some(-25.0),
+            profile_coefficients: vec![0.0, f64::NAN],
+            ..Default::default()
+        })
+        .unwrap_err();
+        assert_eq!(e.field, "profile_coefficients[1] (α2, y^4)");
     }
 
     #[test]

@@ -13,12 +13,17 @@ pub struct Args {
 /// Parses `args` (after the command): the job file, then options from `allowed`, each with a
 /// value. `--help` anywhere is answered by the caller before this ([`wants_help`]).
 pub fn parse(args: &[String], allowed: &[&str]) -> Result<Args, Failure> {
+    parse_with(args, allowed, "JOB.json")
+}
+
+/// [`parse`] with the first word named `first` in messages (`DESIGN`).
+pub fn parse_with(args: &[String], allowed: &[&str], first: &str) -> Result<Args, Failure> {
     let (job, rest) = args
         .split_first()
-        .ok_or_else(|| Failure::Usage("missing JOB.json".into()))?;
+        .ok_or_else(|| Failure::Usage(format!("missing {first}")))?;
     if job.starts_with("--") {
         return Err(Failure::Usage(format!(
-            "expected JOB.json before the options, got {job}"
+            "expected {first} before the options, got {job}"
         )));
     }
     let mut options: Vec<(String, String)> = Vec::new();
@@ -33,10 +38,11 @@ pub fn parse(args: &[String], allowed: &[&str]) -> Result<Args, Failure> {
         if options.iter().any(|(f, _)| f == flag) {
             return Err(Failure::Usage(format!("{flag} given twice")));
         }
-        let what = if flag.starts_with("--max-") {
-            "a number"
-        } else {
-            "a file name"
+        let what = match flag.as_str() {
+            "--cut" => "optic or mould",
+            "--surface" | "--nx" | "--ny" => "a whole number",
+            f if f.starts_with("--max-") || f.ends_with("-mm") => "a number",
+            _ => "a file name",
         };
         let value = it
             .next()
@@ -66,6 +72,19 @@ impl Args {
             .iter()
             .find(|(f, _)| f == flag)
             .map(|(_, v)| v.as_str())
+    }
+
+    /// The value of `flag` as a whole number from `min`, or a usage error naming it.
+    pub fn whole(&self, flag: &str, min: usize) -> Result<Option<usize>, Failure> {
+        let Some(text) = self.value(flag) else {
+            return Ok(None);
+        };
+        match text.parse::<usize>() {
+            Ok(v) if v >= min => Ok(Some(v)),
+            _ => Err(Failure::Usage(format!(
+                "{flag} {text}: must be a whole number ≥ {min}"
+            ))),
+        }
     }
 
     /// The value of `flag` as a positive number, or a usage error naming it.

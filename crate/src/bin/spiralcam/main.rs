@@ -5,6 +5,8 @@
 //!                         [--report FILE] [--max-output-gb G] [--max-points N] [--max-seconds S]
 //! spiralcam analyse JOB.json [--report FILE] [--maps PREFIX]
 //! spiralcam sag JOB.json --at POINTS.csv
+//! spiralcam import DESIGN [--surface N] [--cut optic|mould] [--diameter-mm D] --out JOB.json
+//! spiralcam export-grid JOB.json --nx N --ny N --out FILE.DAT [--half-width-mm W]
 //! ```
 //!
 //! Every job is admitted before work ([`spiralcam::plan::admission`]): its points, the size of
@@ -18,7 +20,9 @@ mod analyse;
 mod args;
 mod bar;
 mod cancel;
+mod export_grid;
 mod files;
+mod import;
 mod plan;
 mod sag;
 
@@ -32,6 +36,8 @@ const USAGE: &str = "usage:
                           [--report FILE] [--max-output-gb G] [--max-points N] [--max-seconds S]
   spiralcam analyse JOB.json [--report FILE] [--maps PREFIX]
   spiralcam sag JOB.json --at POINTS.csv
+  spiralcam import DESIGN [--surface N] [--cut optic|mould] [--diameter-mm D] --out JOB.json
+  spiralcam export-grid JOB.json --nx N --ny N --out FILE.DAT [--half-width-mm W]
   spiralcam help [COMMAND] | COMMAND --help | --version";
 
 /// The most a job file may weigh, bytes: it may carry its data files as text.
@@ -71,13 +77,15 @@ fn main() -> ExitCode {
     let command = args.first().map(String::as_str);
     let rest = args.get(1..).unwrap_or(&[]);
     let result = match command {
-        Some("plan" | "analyse" | "sag") if args::wants_help(rest) => {
+        Some("plan" | "analyse" | "sag" | "import" | "export-grid") if args::wants_help(rest) => {
             help(command);
             Ok(())
         }
         Some("plan") => plan::run(rest),
         Some("analyse") => analyse::run(rest),
         Some("sag") => sag::run(rest),
+        Some("import") => import::run(rest),
+        Some("export-grid") => export_grid::run(rest),
         Some("help") => {
             help(rest.first().map(String::as_str));
             Ok(())
@@ -87,14 +95,14 @@ fn main() -> ExitCode {
             Ok(())
         }
         None => Err(Failure::Usage(
-            "expected a command: plan, analyse or sag".into(),
+            "expected a command: plan, analyse, sag, import or export-grid".into(),
         )),
         Some("--version" | "-V") => {
             println!("spiralcam {}", env!("CARGO_PKG_VERSION"));
             Ok(())
         }
         Some(other) => Err(Failure::Usage(format!(
-            "unknown command {other}: expected a command: plan, analyse or sag"
+            "unknown command {other}: expected a command: plan, analyse, sag, import or export-grid"
         ))),
     };
     match result {
@@ -120,6 +128,8 @@ fn help(command: Option<&str>) {
         Some("plan") => println!("{}", plan::HELP),
         Some("analyse") => println!("{}", analyse::HELP),
         Some("sag") => println!("{}", sag::HELP),
+        Some("import") => println!("{}", import::HELP),
+        Some("export-grid") => println!("{}", export_grid::HELP),
         _ => println!("{USAGE}"),
     }
 }

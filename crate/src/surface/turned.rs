@@ -1,0 +1,172 @@
+//! A design turned 180° about its Y axis: the frame in which a surface is cut from the side its
+//! +Z points away from (DESIGN.md, "The lab's workflow": a lens surface cut from the air side).
+//!
+//! The rotation takes `(x, y, z)` to `(−x, y, −z)` (the matrix diag(−1, 1, −1), determinant
+//! +1: a rotation, never a mirror). A design point `(x, y, f(x, y))` lands at `(−x, y, −f)`,
+//! so the turned sag is `g(x, y) = −f(−x, y)`, and by the chain rule
+//! `g_x = f_x`, `g_y = −f_y`, `g_xx = −f_xx`, `g_xy = f_xy`, `g_yy = −f_yy`, all at (−x, y).
+//! A term odd in x keeps its sign under the turn (`g = a·x³` for `f = a·x³`), where a mirror
+//! (`z → −z` alone) would flip it: the freeform is cut as designed, not as its mirror image.
+//! A line `(x₀, y₀) + t·(c, s)` is the design's line `(−x₀, y₀) + t·(−c, s)` with the same
+//! parameter, so slope kinks carry over unchanged.
+
+use super::{Line, Local, Surface, UndefinedError};
+
+/// A surface turned 180° about Y.
+#[derive(Debug)]
+pub struct Turned {
+    inner: Box<dyn Surface>,
+}
+
+impl Turned {
+    /// `inner` turned 180° about its Y axis.
+    pub fn new(inner: Box<dyn Surface>) -> Self {
+        Self { inner }
+    }
+
+    /// An error of the design at (−x, y) restated at the point asked, (x, y).
+    fn at(x: f64, e: UndefinedError) -> UndefinedError {
+        UndefinedError { x_mm: x, ..e }
+    }
+}
+
+impl Surface for Turned {
+    fn local(&self, x: f64, y: f64) -> Result<Local, UndefinedError> {
+        let l = self.inner.local(-x, y).map_err(|e| Self::at(x, e))?;
+        Ok(Local {
+            z: -l.z,
+            zx: l.zx,
+            zy: -l.zy,
+            zxx: -l.zxx,
+            zxy: l.zxy,
+            zyy: -l.zyy,
+        })
+    }
+
+    fn sag(&self, x: f64, y: f64) -> Result<f64, UndefinedError> {
+        Ok(-self.inner.sag(-x, y).map_err(|e| Self::at(x, e))?)
+    }
+
+    fn feature_length_mm(&self) -> f64 {
+        self.inner.feature_length_mm()
+    }
+
+    fn slope_kinks(&self, line: Line, t0: f64, t1: f64, out: &mut Vec<f64>) {
+        let design = Line {
+            x0: -line.x0,
+            y0: line.y0,
+            c: -line.c,
+            s: line.s,
+        };
+        self.inner.slope_kinks(design, t0, t1, out);
+    }
+
+    fn describe(&self) -> String {
+        format!(
+            "{}; turned 180° about Y (x → −x, z → −z)",
+            self.inner.describe()
+        )
+    }
+
+    fn warnings(&self) -> Vec<String> {
+        self.inner.warnings()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::surface::{AsphereSpec, xy_polynomial::XyTerm};
+    use crate::surface::{LensArray, LensArraySpec, PartDisc, XyPolynomial, XyPolynomialSpec};
+
+    /// A sphere of radius 40 mm plus `0.002·x³ + 0.001·x·y²` (N = 1 mm): odd in x.
+    fn freeform() -> XyPolynomial {
+        XyPolynomial::new(&XyPolynomialSpec {
+            base: AsphereSpec {
+                radius_mm: Some(40.0),
+                ..Default::default()
+            },
+            norm_radius_mm: 1.0,
+            terms: vec![
+                XyTerm {
+                    x: 3,
+                    y: 0,
+                    coefficient_mm: 0.002,
+                },
+                XyTerm {
+                    x: 1,
+                    y: 2,
+                    coefficient_mm: 0.001,
+                },
+            ],
+        })
+        .unwrap()
+    }
+
+    #[test]
+    fn an_odd_freeform_is_turned_not_mirrored() {
+        let t = Turned::new(Box::new(freeform()));
+        let (x, y) = (1.5_f64, -0.7_f64);
+        let sphere = |x: f64, y: f64| {
+            let s = x * x + y * y;
+            s / (40.0 + (1600.0 - s).sqrt())
+        };
+        // g(x, y) = −f(−x, y): the odd terms keep their sign, the sphere turns over.
+        let turned = -sphere(x, y) + 0.002 * x.powi(3) + 0.001 * x * y * y;
+        assert!((t.sag(x, y).unwrap() - turned).abs() < 1e-15);
+        // A mirror (z → −z alone) would give the odd terms the other sign.
+        let mirror = -sphere(x, y) - 0.002 * x.powi(3) - 0.001 * x * y * y;
+        assert!((t.sag(x, y).unwrap() - mirror).abs() > 1e-3);
+    }
+
+    #[test]
+    fn derivatives_match_central_differences() {
+        let t = Turned::new(Box::new(freeform()));
+        let h = 1e-5;
+        for (x, y) in [(1.5, -0.7), (-2.0, 1.1), (0.3, 2.4)] {
+            let l = t.local(x, y).unwrap();
+            let f = |x: f64, y: f64| t.local(x, y).unwrap();
+            let (px, mx, py, my) = (f(x + h, y), f(x - h, y), f(x, y + h), f(x, y - h));
+            let close = |a: f64, b: f64, what: &str| {
+                assert!((a - b).abs() < 1e-8 * (1.0 + b.abs()), "{what}: {a} vs {b}");
+            };
+            close(l.zx, (px.z - mx.z) / (2.0 * h), "zx");
+            close(l.zy, (py.z - my.z) / (2.0 * h), "zy");
+            close(l.zxx, (px.zx - mx.zx) / (2.0 * h), "zxx");
+            close(l.zxy, (py.zx - my.zx) / (2.0 * h), "zxy");
+            close(l.zyy, (py.zy - my.zy) / (2.0 * h), "zyy");
+            assert_eq!(l.z, t.sag(x, y).unwrap());
+        }
+    }
+
+    #[test]
+    fn kinks_and_errors_are_restated_in_the_turned_frame() {
+        let array = LensArray::new(&LensArraySpec::paper004(), PartDisc::centred(3.0)).unwrap();
+        let line = Line {
+            x0: 0.2,
+            y0: 0.1,
+            c: 0.6,
+            s: 0.8,
+        };
+        let design_line = Line {
+            x0: -0.2,
+            y0: 0.1,
+            c: -0.6,
+            s: 0.8,
+        };
+        let (mut a, mut b) = (Vec::new(), Vec::new());
+        array.slope_kinks(design_line, -2.0, 2.0, &mut a);
+        let t = Turned::new(Box::new(array));
+        t.slope_kinks(line, -2.0, 2.0, &mut b);
+        assert!(!a.is_empty());
+        assert_eq!(a, b);
+        let sphere = Turned::new(Box::new(crate::surface::Asphere::sphere(5.0).unwrap()));
+        let e = sphere.local(6.0, 0.0).unwrap_err();
+        assert_eq!((e.x_mm, e.y_mm), (6.0, 0.0));
+        assert!(
+            sphere
+                .describe()
+                .ends_with("turned 180° about Y (x → −x, z → −z)")
+        );
+    }
+}

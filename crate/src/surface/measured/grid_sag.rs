@@ -76,6 +76,10 @@ mod tests {
         assert_eq!(m.len(), 29);
         assert!(m.source.contains("file unit cm"), "{}", m.source);
         let e = read("map.DAT", b"5 5 1 1 0 0 0\n0 0 0\n").unwrap_err();
-        assert!(e.to_string().starts_with("map.DAT: Zemax Grid Sag .DAT: line 2"), "{e}");
+        assert!(
+            e.to_string()
+                .starts_with("map.DAT: Zemax Grid Sag .DAT: line 2"),
+            "{e}"
+        );
     }
 }

@@ -115,7 +115,10 @@ mod tests {
         mp.resize(10, 0);
         assert_eq!(Format::detect("a.DAT", &mp).unwrap(), Format::MetroPro);
         assert_eq!(Format::detect("scan.CSV", b"x_mm").unwrap(), Format::Csv);
-        assert_eq!(Format::detect("grid.DAT", b"33 33 1 1 0 0 0").unwrap(), Format::GridSag);
+        assert_eq!(
+            Format::detect("grid.DAT", b"33 33 1 1 0 0 0").unwrap(),
+            Format::GridSag
+        );
         let e = Format::detect("grid.xyz", b"! Zemax grid").unwrap_err();
         assert!(
             e.to_string().contains("MetroPro .dat (magic 881B036F"),

@@ -33,10 +33,14 @@ pub fn parse(args: &[String], allowed: &[&str]) -> Result<Args, Failure> {
         if options.iter().any(|(f, _)| f == flag) {
             return Err(Failure::Usage(format!("{flag} given twice")));
         }
-        let what = if flag.starts_with("--max-") {
-            "a number"
-        } else {
-            "a file name"
+        let what = match flag.as_str() {
+            f if f.starts_with("--max-") => "a number",
+            "--gain" | "--rotate" => "a number",
+            "--kind" => "error or height",
+            "--register" => "a list of terms",
+            "--mirror" => "x or y",
+            "--params" => "a JSON file",
+            _ => "a file name",
         };
         let value = it
             .next()

@@ -20,6 +20,12 @@ use std::path::{Path, PathBuf};
 
 /// Reads `path` as UTF-8 text: a regular file of at most `limit` bytes.
 pub fn read_text(path: &Path, limit: u64) -> Result<String, String> {
+    String::from_utf8(read_bytes(path, limit)?)
+        .map_err(|e| format!("not UTF-8 text (at byte {})", e.utf8_error().valid_up_to()))
+}
+
+/// Reads `path`: a regular file of at most `limit` bytes.
+pub fn read_bytes(path: &Path, limit: u64) -> Result<Vec<u8>, String> {
     let file = open_regular(path)?;
     let mut bytes = Vec::new();
     file.take(limit + 1)
@@ -28,8 +34,7 @@ pub fn read_text(path: &Path, limit: u64) -> Result<String, String> {
     if bytes.len() as u64 > limit {
         return Err(format!("larger than {limit} bytes, the most read"));
     }
-    String::from_utf8(bytes)
-        .map_err(|e| format!("not UTF-8 text (at byte {})", e.utf8_error().valid_up_to()))
+    Ok(bytes)
 }
 
 /// Opens `path` for reading if it is a regular file.

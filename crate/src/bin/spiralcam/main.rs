@@ -5,6 +5,10 @@
 //!                         [--max-output-gb G] [--max-points N] [--max-seconds S]
 //! spiralcam analyse JOB.json [--report FILE] [--maps PREFIX]
 //! spiralcam sag JOB.json --at POINTS.csv
+//! spiralcam correct JOB.json --measured FILE --kind error|height [--gain G] [--register TERMS]
+//!                   [--rotate DEG] [--mirror x|y] [--out CORRECTED.json] [--report FILE]
+//!                   [--maps PREFIX]
+//! spiralcam setup JOB.json --params SETUP.json [--report FILE]
 //! ```
 //!
 //! Every job is admitted before work ([`spiralcam::plan::admission`]): its points, the size of
@@ -18,9 +22,11 @@ mod analyse;
 mod args;
 mod bar;
 mod cancel;
+mod correct;
 mod files;
 mod plan;
 mod sag;
+mod setup;
 
 use spiralcam::job::Job;
 use spiralcam::surface::data_file::MAX_DATA_BYTES;
@@ -32,6 +38,10 @@ const USAGE: &str = "usage:
                           [--max-output-gb G] [--max-points N] [--max-seconds S]
   spiralcam analyse JOB.json [--report FILE] [--maps PREFIX]
   spiralcam sag JOB.json --at POINTS.csv
+  spiralcam correct JOB.json --measured FILE --kind error|height [--gain G] [--register TERMS]
+                    [--rotate DEG] [--mirror x|y] [--out CORRECTED.json] [--report FILE]
+                    [--maps PREFIX]
+  spiralcam setup JOB.json --params SETUP.json [--report FILE]
   spiralcam help [COMMAND] | COMMAND --help | --version";
 
 /// The most a job file may weigh, bytes: it may carry its data files as text.
@@ -62,13 +72,15 @@ fn main() -> ExitCode {
     let command = args.first().map(String::as_str);
     let rest = args.get(1..).unwrap_or(&[]);
     let result = match command {
-        Some("plan" | "analyse" | "sag") if args::wants_help(rest) => {
+        Some("plan" | "analyse" | "sag" | "correct" | "setup") if args::wants_help(rest) => {
             help(command);
             Ok(())
         }
         Some("plan") => plan::run(rest),
         Some("analyse") => analyse::run(rest),
         Some("sag") => sag::run(rest),
+        Some("correct") => correct::run(rest),
+        Some("setup") => setup::run(rest),
         Some("help") => {
             help(rest.first().map(String::as_str));
             Ok(())
@@ -78,14 +90,14 @@ fn main() -> ExitCode {
             Ok(())
         }
         None => Err(Failure::Usage(
-            "expected a command: plan, analyse or sag".into(),
+            "expected a command: plan, analyse, sag, correct or setup".into(),
         )),
         Some("--version" | "-V") => {
             println!("spiralcam {}", env!("CARGO_PKG_VERSION"));
             Ok(())
         }
         Some(other) => Err(Failure::Usage(format!(
-            "unknown command {other}: expected a command: plan, analyse or sag"
+            "unknown command {other}: expected a command: plan, analyse, sag, correct or setup"
         ))),
     };
     match result {
@@ -111,6 +123,8 @@ fn help(command: Option<&str>) {
         Some("plan") => println!("{}", plan::HELP),
         Some("analyse") => println!("{}", analyse::HELP),
         Some("sag") => println!("{}", sag::HELP),
+        Some("correct") => println!("{}", correct::HELP),
+        Some("setup") => println!("{}", setup::HELP),
         _ => println!("{USAGE}"),
     }
 }

@@ -25,7 +25,7 @@
 
 use super::extension::{self, ExtensionReport};
 use super::registration::{MeasuredKind, RegisterTerms, Registration, register};
-use super::residual::{GridLayout, ResidualFigures, ResidualGrid};
+use super::residual::{GridLayout, MAX_GRID_SIDE, MIN_GRID_SIDE, ResidualFigures, ResidualGrid};
 use super::zernike_fit::{FringeBasis, ZernikeFit};
 use crate::field::{FieldError, short};
 use crate::job::Job;
@@ -302,6 +302,43 @@ fn split(surface: &SurfaceSpec) -> Result<Split, FieldError> {
     })
 }
 
+/// The grid of an earlier correction term.
+fn old_grid(spec: &GridSagSpec) -> Result<GridData, FieldError> {
+    let field = "surface.correction.data";
+    let text = spec.data.text(field)?;
+    GridData::parse(text).map_err(|e| FieldError::new(field, spec.data.name(), e.to_string()))
+}
+
+/// The layout of an earlier correction's grid, on which the new correction is added node by
+/// node: a square grid of odd side centred on the axis, as [`Correction::run`] writes it.
+fn layout_of(g: &GridData, radius: f64) -> Result<GridLayout, FieldError> {
+    let square = g.nx == g.ny
+        && g.nx % 2 == 1
+        && (MIN_GRID_SIDE..=MAX_GRID_SIDE).contains(&g.nx)
+        && (g.dx_mm - g.dy_mm).abs() <= 1e-12 * g.dx_mm
+        && g.x_decenter_mm == 0.0
+        && g.y_decenter_mm == 0.0;
+    if !square {
+        return Err(FieldError::new(
+            "surface.correction.data",
+            format!(
+                "{} × {} nodes, {} × {} mm apart, decentred ({}, {}) mm",
+                g.nx,
+                g.ny,
+                short(g.dx_mm),
+                short(g.dy_mm),
+                short(g.x_decenter_mm),
+                short(g.y_decenter_mm)
+            ),
+            format!(
+                "must be the square grid centred on the axis that spiralcam correct writes (odd \
+                 side of {MIN_GRID_SIDE} to {MAX_GRID_SIDE} nodes, equal spacings)"
+            ),
+        ));
+    }
+    Ok(GridLayout::with_nodes(radius, g.nx, g.dx_mm))
+}
+
 /// The typical distance between measured points, mm: a grid's spacing, or `√(area/points)` of
 /// a cloud's bounding box.
 fn data_spacing(map: &MeasuredMap, points: &[[f64; 3]]) -> f64 {
@@ -423,8 +460,13 @@ impl Correction {
         check_on_part(&residual, radius)?;
         let before = ResidualFigures::of(residual.iter().map(|p| p[2]));
         let fit = ZernikeFit::fit(&residual, radius);
-        let layout = GridLayout::covering(radius, data_spacing(map, &points));
-        let mut grid = ResidualGrid::measure(layout, &residual, data_spacing(map, &points));
+        let old = parts.correction.as_ref().map(old_grid).transpose()?;
+        let spacing = data_spacing(map, &points);
+        let layout = match &old {
+            Some(g) => layout_of(g, radius)?,
+            None => GridLayout::covering(radius, spacing),
+        };
+        let mut grid = ResidualGrid::measure(layout, &residual, spacing);
         let basis = FringeBasis::new();
         let extension = extension::fill(&mut grid, |x, y| {
             let r = x.hypot(y);
@@ -432,10 +474,6 @@ impl Correction {
             fit.value(&basis, x * s, y * s)
         });
         // The correction: the earlier one (if any) at the nodes, less gain × the residual.
-        let old = match &parts.correction {
-            Some(spec) => Some(GridSag::new(spec).map_err(|e| e.within("surface.correction"))?),
-            None => None,
-        };
         let n = layout.n;
         let mut increment = vec![0.0; n * n];
         let mut total = vec![0.0; n * n];
@@ -443,16 +481,19 @@ impl Correction {
             if !grid.kept[k] {
                 continue;
             }
-            let (x, y) = layout.node(k % n, k / n);
             increment[k] = -gain * grid.values_mm[k];
             let earlier = match &old {
-                Some(s) => s.sag(x, y).map_err(|e| {
-                    FieldError::new(
+                Some(g) if g.nodes[k].valid => g.nodes[k].z_mm,
+                Some(_) => {
+                    let (x, y) = layout.node(k % n, k / n);
+                    return Err(FieldError::new(
                         "surface.correction",
-                        format!("the grid at ({}, {}) mm", short(x), short(y)),
-                        format!("must cover the part and its margin: {}", e.reason),
+                        format!("no value at ({}, {}) mm", short(x), short(y)),
+                        "must cover the part and its margin as spiralcam correct wrote it (was \
+                         part.diameter_mm changed?)",
                     )
-                })?,
+                    .into());
+                }
                 None => 0.0,
             };
             total[k] = earlier + increment[k];

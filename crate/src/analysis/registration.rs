@@ -23,7 +23,8 @@
 //! **What the data can tell.** On a sphere a decentre is a tilt (−∇S = −(x, y)/R is a plane),
 //! and on a surface of revolution a clocking changes nothing. Before solving, each of decentre
 //! x, decentre y and clocking is tested by its multiple correlation with all the other terms'
-//! columns at the start ([`NormalEquations::correlation`]); one above [`SEPARABLE_CORRELATION`]
+//! columns at the start ([`NormalEquations::correlation`]; a clocking column below [`NOISE`] of
+//! its scale counts as 1); one above [`SEPARABLE_CORRELATION`]
 //! is not fitted and is reported as `None` with its correlation, the data being unable to
 //! separate it (its effect is then absorbed by the terms it resembles, tilt for a decentre).
 //!
@@ -38,6 +39,10 @@ use serde::Serialize;
 pub const MAX_ITERATIONS: usize = 30;
 /// The largest correlation with the other terms at which a decentre or clocking is still fitted.
 pub const SEPARABLE_CORRELATION: f64 = 0.999;
+
+/// The relative RMS below which the clocking column is taken for rounding noise: a clocking
+/// of 1 rad would move the sag by less than 1e-9 of `|∇S|·|q|`.
+pub const NOISE: f64 = 1e-9;
 
 /// What the measured file holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -229,6 +234,21 @@ impl Problem<'_> {
         Ok((q, z - model))
     }
 
+    /// Whether the clocking column `S_x·q_y − S_y·q_x` at the start is below [`NOISE`] of its
+    /// scale `|∇S|·|q|` in RMS over the points: a design that looks the same turned.
+    fn clocking_is_noise(&self) -> Result<bool, UndefinedError> {
+        let Some(d) = self.design else {
+            return Ok(true);
+        };
+        let (mut column, mut scale) = (0.0, 0.0);
+        for &[x, y, _] in self.points {
+            let l = d.local(x, y)?;
+            column += (l.zx * y - l.zy * x).powi(2);
+            scale += (l.zx.hypot(l.zy) * x.hypot(y)).powi(2);
+        }
+        Ok(column <= NOISE * NOISE * scale)
+    }
+
     fn normal_equations(
         &self,
         est: &Estimate,
@@ -280,6 +300,12 @@ pub fn register(
         correlation(Unknown::DecentreY),
         correlation(Unknown::Clocking),
     );
+    // A clocking column that is rounding noise (a surface of revolution) correlates with
+    // nothing, yet tells nothing: it counts as a correlation of 1.
+    let cc = match cc {
+        Some(_) if problem.clocking_is_noise()? => Some(1.0),
+        other => other,
+    };
     let separable = |c: Option<f64>| c.is_some_and(|c| c <= SEPARABLE_CORRELATION);
     let unknowns: Vec<Unknown> = wanted
         .iter()

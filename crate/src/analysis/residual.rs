@@ -100,15 +100,21 @@ impl GridLayout {
         let target = target.min(2.0 * part_radius_mm / 32.0);
         // n odd with the cover disc inside ±half = (n − 1)·h/2, h the target spacing or a little
         // less: n from the target, then h from n.
-        let cover = |h: f64| 1.02 * part_radius_mm + 2.0 * h;
+        let cover = |h: f64| Self::with_nodes(part_radius_mm, 0, h).cover_radius_mm;
         let mut n = (2.0 * cover(target) / target).ceil() as usize + 1;
         n = n.clamp(MIN_GRID_SIDE, MAX_GRID_SIDE) | 1;
         // With h = 2·cover(h)/(n − 1): h·(n − 1)/2 = 1.02 R + 2h.
         let h = 1.02 * part_radius_mm / ((n - 1) as f64 / 2.0 - 2.0);
+        Self::with_nodes(part_radius_mm, n, h)
+    }
+
+    /// The grid of `n` nodes a side `step_mm` apart over a part of radius `part_radius_mm`
+    /// (the layout of a grid already written, [`GridLayout::covering`]'s margin).
+    pub fn with_nodes(part_radius_mm: f64, n: usize, step_mm: f64) -> Self {
         Self {
             n,
-            step_mm: h,
-            cover_radius_mm: cover(h),
+            step_mm,
+            cover_radius_mm: 1.02 * part_radius_mm + 2.0 * step_mm,
         }
     }
 

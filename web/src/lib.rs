@@ -1,5 +1,6 @@
 //! spiralcam in the browser: the wasm-bindgen API the page's worker calls to plan a job
-//! (`api`), and the wgpu renderer that draws the surface and the path on the page's canvas
+//! (`api`), correct a job from a measured part and turn a test cut into set-up offsets
+//! (`correct`), and the wgpu renderer that draws the surface and the path on the page's canvas
 //! (`viewer`, WebGPU first, WebGL2 as the fallback) with its orbit [`camera`]. [`colormap`] is
 //! the one height colour scale shared by the shader and the page's legend. `api` and `viewer`
 //! exist only in the wasm32 build.
@@ -9,5 +10,7 @@ pub mod colormap;
 
 #[cfg(target_arch = "wasm32")]
 pub mod api;
+#[cfg(target_arch = "wasm32")]
+pub mod correct;
 #[cfg(target_arch = "wasm32")]
 pub mod viewer;

@@ -25,7 +25,9 @@
 
 use super::extension::{self, ExtensionReport};
 use super::registration::{MeasuredKind, RegisterTerms, Registration, register};
-use super::residual::{GridLayout, MAX_GRID_SIDE, MIN_GRID_SIDE, ResidualFigures, ResidualGrid};
+use super::residual::{
+    GridLayout, MAX_GRID_SIDE, MIN_GRID_SIDE, ResidualFigures, ResidualGrid, bounds,
+};
 use super::zernike_fit::{FringeBasis, ZernikeFit};
 use crate::field::{FieldError, short};
 use crate::job::Job;
@@ -345,18 +347,7 @@ fn data_spacing(map: &MeasuredMap, points: &[[f64; 3]]) -> f64 {
     match &map.data {
         MeasuredData::Grid(g) => g.dx_mm.max(g.dy_mm),
         MeasuredData::Cloud(_) => {
-            let (mut x0, mut y0, mut x1, mut y1) = (
-                f64::INFINITY,
-                f64::INFINITY,
-                f64::NEG_INFINITY,
-                f64::NEG_INFINITY,
-            );
-            for p in points {
-                x0 = x0.min(p[0]);
-                x1 = x1.max(p[0]);
-                y0 = y0.min(p[1]);
-                y1 = y1.max(p[1]);
-            }
+            let [x0, y0, x1, y1] = bounds(points);
             ((x1 - x0).max(0.0) * (y1 - y0).max(0.0) / points.len().max(1) as f64).sqrt()
         }
     }

@@ -80,6 +80,28 @@ impl ResidualFigures {
     }
 }
 
+/// The bounding box `[x_min, y_min, x_max, y_max]` of the points, mm (zeros for none).
+pub fn bounds(points: &[[f64; 3]]) -> [f64; 4] {
+    if points.is_empty() {
+        return [0.0; 4];
+    }
+    let mut b = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    for p in points {
+        b = [
+            b[0].min(p[0]),
+            b[1].min(p[1]),
+            b[2].max(p[0]),
+            b[3].max(p[1]),
+        ];
+    }
+    b
+}
+
 /// Where the grid's nodes lie: `x_i = y_i = −half + i·h`, i = 0 … n − 1.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct GridLayout {
@@ -163,21 +185,7 @@ struct Buckets<'a> {
 
 impl<'a> Buckets<'a> {
     fn new(points: &'a [[f64; 3]], cell: f64) -> Self {
-        let (mut x0, mut y0, mut x1, mut y1) = (
-            f64::INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::NEG_INFINITY,
-        );
-        for p in points {
-            x0 = x0.min(p[0]);
-            y0 = y0.min(p[1]);
-            x1 = x1.max(p[0]);
-            y1 = y1.max(p[1]);
-        }
-        if points.is_empty() {
-            (x0, y0, x1, y1) = (0.0, 0.0, 0.0, 0.0);
-        }
+        let [x0, y0, x1, y1] = bounds(points);
         let nx = (((x1 - x0) / cell).floor() as usize + 1).min(1 << 14);
         let ny = (((y1 - y0) / cell).floor() as usize + 1).min(1 << 14);
         let cell_of = |p: &[f64; 3]| {

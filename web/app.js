@@ -1,10 +1,13 @@
 // The page: the job form, planning in a Web Worker (progress, cancel), the 3-D view, the report,
-// the machine dynamics (split verdict, axis checks, 2-D plots) and the downloads. Planning never runs on this thread, so the page stays responsive; a new
+// the machine dynamics (split verdict, axis checks, 2-D plots) and the downloads; the measured
+// panel (a measured file corrected against the job: residual before and after, the corrected
+// job and its program) and the set-up panel (a test cut turned into offsets). Planning never
+// runs on this thread, so the page stays responsive; a new
 // edit or Cancel terminates the worker and starts a fresh one. The page's state is mirrored on
-// `document.body.dataset.state` ("loading", "planning", "done", "analysing", "analysed", "error",
-// "cancelled") and `window.spiralcam` (plans started and finished, the report, the accuracy
-// analysis, the backend, what the last design import read) for the browser tests. "Import
-// design…" is web/import.js.
+// `document.body.dataset.state` ("loading", "planning", "done", "analysing", "analysed",
+// "correcting", "corrected", "error", "cancelled") and `window.spiralcam` (plans started and
+// finished, the report, the accuracy analysis, the correction's report, the backend, what the
+// last design import read) for the browser tests. "Import design…" is web/import.js.
 
 import init, { Viewer, default_job, colormap_css, colormap_stops, machine_presets, version } from '../pkg/spiralcam_web.js';
 import { JobForm } from './form.js';
@@ -12,7 +15,7 @@ import { bindImport } from './import.js';
 import { drawPlot, prepare } from './plots.js';
 
 const $ = (id) => document.getElementById(id);
-const status = (window.spiralcam = { state: 'loading', backend: null, report: null, analysis: null, started: 0, plans: 0, error: null, imported: null });
+const status = (window.spiralcam = { state: 'loading', backend: null, report: null, analysis: null, correction: null, started: 0, plans: 0, error: null, imported: null });
 
 function setState(s) {
   status.state = s;
@@ -53,13 +56,15 @@ class PlannerWorker {
     reject(err);
   }
 
-  /** `kind`: "plan", "analyse", "nc", "csv", "fts" or "grid". */
-  run(kind, job) {
+  /** `kind`: "plan", "analyse", "nc", "csv", "fts", "grid", "correct" (`extra`: the measured
+   * file's name, bytes and options) or "setup" (`extra`: the observations as JSON). */
+  run(kind, job, extra) {
     this.cancel();
     const id = this.nextId++;
     return new Promise((resolve, reject) => {
       this.pending = { id, kind, resolve, reject };
-      this.worker.postMessage({ id, kind, job });
+      const transfer = extra?.bytes ? [extra.bytes.buffer] : [];
+      this.worker.postMessage({ id, kind, job, extra }, transfer);
     });
   }
 
@@ -419,6 +424,80 @@ function showAnalysis(m, stops) {
   showMap('clearance', m.clearance, m.size, stops, 4, '°');
 }
 
+/** The measured panel: registration, residual before and predicted after, their maps. */
+function showCorrection(m, stops) {
+  const rows = [];
+  if (m) {
+    const reg = m.report.registration;
+    const res = m.report.residual;
+    const after = m.report.corrected.predicted_residual;
+    const um = (v, d = 3) => (v == null ? 'not fitted' : `${fmt(v, d)} µm`);
+    rows.push(
+      ['Measured', `${m.report.measured.points.toLocaleString('en-US')} points, ${m.report.measured.kind}, ${m.report.measured.orientation}`],
+      ['Piston', um(reg.piston_um, 4)],
+      ['Tilt x, y', `${fmt(reg.tilt_x_urad, 3)}, ${fmt(reg.tilt_y_urad, 3)} µrad`],
+      ['Decentre x, y', reg.decentre_x_um == null ? 'not fitted' : `${fmt(reg.decentre_x_um, 3)}, ${fmt(reg.decentre_y_um, 3)} µm`],
+      ['Clocking', reg.clocking_deg == null ? 'not fitted' : `${fmt(reg.clocking_deg, 5)}°`],
+      ['Residual before', `PV ${fmt(res.pv_um, 4)} µm, RMS ${fmt(res.rms_um, 4)} µm`],
+      ['Largest Zernike terms', topZernike(res.zernike_fringe_um)],
+      ['Predicted after the re-cut', `PV ${fmt(after.pv_um, 4)} µm, RMS ${fmt(after.rms_um, 4)} µm (gain ${fmt(m.report.corrected.gain, 3)})`],
+    );
+    for (const w of m.report.warnings) rows.push(['Warning', w]);
+  }
+  $('correction-table').replaceChildren(...keyRows(rows));
+  $('correction-maps').hidden = !m;
+  $('download-corrected').hidden = !m;
+  $('download-corrected-nc').hidden = !m;
+  if (!m) return;
+  // Both maps on the before map's scale, so that the after map shows how much is left.
+  const [lo, hi] = drawMap($('map-before'), m.before, m.size, stops);
+  $('map-before-range').textContent = `${fmt(lo, 4)} … ${fmt(hi, 4)} µm`;
+  const [alo, ahi] = drawMap($('map-after'), m.after, m.size, stops);
+  $('map-after-range').textContent = `${fmt(alo, 4)} … ${fmt(ahi, 4)} µm`;
+}
+
+/** The three largest Fringe Zernike terms, e.g. "Z5 0.4 µm, Z10 −0.25 µm, Z9 0.01 µm". */
+function topZernike(z) {
+  return z
+    .map((v, k) => [k + 1, v])
+    .filter(([k]) => k > 3)
+    .sort((a, b) => Math.abs(b[1]) - Math.abs(a[1]))
+    .slice(0, 3)
+    .map(([k, v]) => `Z${k} ${fmt(v, 4)} µm`)
+    .join(', ');
+}
+
+/** The set-up offsets as rows. */
+function showOffsets(o) {
+  const rows = [];
+  if (o.centre_post) rows.push(['Tool height (post)', `${fmt(o.centre_post.tool_height_um, 3)} µm: move the tool ${fmt(o.centre_post.move_tool_um, 3)} µm`]);
+  if (o.profile) rows.push(['X offset (W/M profile)', `${fmt(o.profile.x_offset_um, 4)} µm: move X ${fmt(o.profile.move_x_um, 4)} µm`]);
+  if (o.radius) {
+    rows.push(
+      ['Design radius fitted', `${fmt(o.radius.design_radius_mm, 6)} mm`],
+      ['X offset (radius)', `${fmt(o.radius.x.x_offset_um, 4)} µm: move X ${fmt(o.radius.x.move_x_um, 4)} µm`],
+      ['B-axis Z offset (radius)', `${fmt(o.radius.b_axis_z_offset_um, 4)} µm`],
+    );
+  }
+  $('setup-table').replaceChildren(...keyRows(rows));
+}
+
+/** The observations of the set-up panel as `spiralcam setup --params` JSON; empty groups left
+ * out. */
+function setupParams() {
+  const num = (id) => {
+    const t = $(id).value.trim();
+    return t === '' ? null : Number(t);
+  };
+  const p = {};
+  if (num('setup-post') != null) p.centre_post = { diameter_um: num('setup-post'), shape: $('setup-shape').value };
+  if (num('setup-rise') != null) {
+    p.profile = { inner_radius_mm: num('setup-r1'), outer_radius_mm: num('setup-r2'), rise_um: num('setup-rise') };
+  }
+  if (num('setup-radius') != null) p.radius = { measured_mm: num('setup-radius'), aperture_radius_mm: num('setup-aperture') };
+  return JSON.stringify(p);
+}
+
 /** The colour legend beside the view. */
 function showLegend(zMin, zMax, exaggeration, revolutionStep, passNote = '') {
   const ticks = $('legend-ticks');
@@ -673,6 +752,73 @@ async function main() {
     }
   };
   $('analyse').addEventListener('click', analyse);
+
+  let corrected = null;
+  let correctedNc = '';
+  const runCorrection = async () => {
+    const file = $('measured-file').files[0];
+    if (!file) return;
+    generation++;
+    setState('correcting');
+    busy(true);
+    $('correction-error').textContent = '';
+    try {
+      const started = performance.now();
+      const options = {
+        kind: $('measured-kind').value,
+        gain: Number($('measured-gain').value),
+        register: $('measured-register').value,
+        rotate_deg: Number($('measured-rotate').value),
+        mirror: $('measured-mirror').value,
+      };
+      const bytes = new Uint8Array(await file.arrayBuffer());
+      const m = await worker.run('correct', form.value(), { name: file.name, bytes, options });
+      corrected = m.job;
+      correctedNc = m.ncName;
+      showCorrection(m, stops);
+      $('plan-time').textContent = `corrected in ${fmt((performance.now() - started) / 1000, 2)} s`;
+      status.correction = m.report;
+      setState('corrected');
+    } catch (e) {
+      showCorrection(null, stops);
+      corrected = null;
+      if (!e.cancelled) {
+        $('correction-error').textContent = e.message;
+        status.error = e.message;
+        setState('error');
+      } else setState('cancelled');
+    } finally {
+      busy(false);
+    }
+  };
+  $('measured-file').addEventListener('change', runCorrection);
+  $('correct').addEventListener('click', runCorrection);
+  $('download-corrected').addEventListener('click', () => {
+    if (corrected) download(`${corrected.name}.json`, `${JSON.stringify(corrected, null, 2)}\n`, 'application/json');
+  });
+  $('download-corrected-nc').addEventListener('click', async () => {
+    if (!corrected) return;
+    generation++;
+    busy(true);
+    try {
+      const m = await worker.run('nc', corrected);
+      download(correctedNc, m.bytes, 'text/plain');
+    } catch (e) {
+      if (!e.cancelled) $('correction-error').textContent = e.message;
+    } finally {
+      busy(false);
+    }
+  });
+  $('setup-run').addEventListener('click', async () => {
+    $('setup-error').textContent = '';
+    try {
+      const m = await worker.run('setup', form.value(), setupParams());
+      showOffsets(m.offsets);
+    } catch (e) {
+      $('setup-table').replaceChildren();
+      if (!e.cancelled) $('setup-error').textContent = e.message;
+    }
+  });
   $('download-nc').addEventListener('click', () => save('nc'));
   $('download-csv').addEventListener('click', () => save('csv'));
   $('download-fts').addEventListener('click', () => save('fts'));

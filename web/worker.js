@@ -1,9 +1,10 @@
 // The planning worker: loads the wasm module once and answers {id, kind, job} messages with
-// progress messages and one result ({kind: "planned" | "analysed" | "bytes"}) or
+// progress messages and one result ({kind: "planned" | "analysed" | "corrected" | "offsets" |
+// "bytes"}) or
 // {kind: "error", message}.
 // Typed arrays are transferred, not copied.
 
-import init, { analyse, plan, nc_program, csv_table, fts_table, fts_grid, power_maps } from '../pkg/spiralcam_web.js';
+import init, { analyse, plan, nc_program, csv_table, fts_table, fts_grid, power_maps, correct, setup_offsets } from '../pkg/spiralcam_web.js';
 
 /** Samples per side of the power maps. */
 const MAP_SIZE = 161;
@@ -11,7 +12,7 @@ const MAP_SIZE = 161;
 const ready = init();
 
 self.onmessage = async (e) => {
-  const { id, kind, job } = e.data;
+  const { id, kind, job, extra } = e.data;
   const progress = (done, total, stage) => self.postMessage({ id, kind: 'progress', done, total, stage });
   try {
     await ready;
@@ -52,6 +53,22 @@ self.onmessage = async (e) => {
       };
       a.free();
       self.postMessage(m, [m.linearization.buffer, m.form.buffer, m.clearance.buffer]);
+    } else if (kind === 'correct') {
+      const c = correct(job, extra.name, extra.bytes, extra.options);
+      const m = {
+        id,
+        kind: 'corrected',
+        report: JSON.parse(c.report),
+        size: c.size,
+        before: c.before_um,
+        after: c.after_um,
+        job: JSON.parse(c.job_json),
+        ncName: c.nc_file_name,
+      };
+      c.free();
+      self.postMessage(m, [m.before.buffer, m.after.buffer]);
+    } else if (kind === 'setup') {
+      self.postMessage({ id, kind: 'offsets', offsets: JSON.parse(setup_offsets(job, extra)) });
     } else {
       const write = { nc: nc_program, csv: csv_table, fts: fts_table, grid: fts_grid }[kind];
       const bytes = write(job, progress);

@@ -45,7 +45,8 @@ pub fn version() -> String {
     env!("CARGO_PKG_VERSION").to_string()
 }
 
-fn parse_job(job: JsValue) -> Result<Job, JsError> {
+/// The job of a JavaScript object, read with the core's field checks.
+pub(crate) fn parse_job(job: JsValue) -> Result<Job, JsError> {
     Job::deserialize_from(serde_wasm_bindgen::Deserializer::from(job))
         .map_err(|e| JsError::new(&e.to_string()))
 }

@@ -3,7 +3,21 @@
 //!
 //! - [`linearization`]: the cutting linearization error between NC points (paper 000, PVerr);
 //! - [`predicted_form`]: the machined form predicted from the nose swept along the path;
-//! - [`power_map`]: mean power and cylinder of a surface (paper 003's maps).
+//! - [`power_map`]: mean power and cylinder of a surface (paper 003's maps);
+//!
+//! and the closed loop of issue 15, from a measured part back to a corrected job:
+//!
+//! - [`registration`]: the design registered to measured data by least squares (piston, tilt,
+//!   power; decentre and clocking where the design's shape tells them from tilt);
+//! - [`residual`]: the residual on a grid over the part, from local fits of the measured points;
+//! - [`extension`]: the residual continued smoothly where nothing was measured (minimum
+//!   curvature);
+//! - [`zernike_fit`]: its first 37 Fringe Zernike terms ([`normal_equations`]: the least squares
+//!   of both);
+//! - [`correction`]: the whole correction: design − gain × residual as a job, and the residual
+//!   predicted after the re-cut;
+//! - [`setup`]: the set-up errors a test cut shows (tool height, X offset, radius) turned into
+//!   offsets.
 //!
 //! This module is the accuracy report ([`Analysis`]): in one pass over the path the
 //! linearization error, the predicted form, the tool angles the surface asks for
@@ -21,9 +35,16 @@
 //! and adds what the linearization check leaves out: the cusps between passes and the nose's
 //! envelope.
 
+pub mod correction;
+pub mod extension;
 pub mod linearization;
+pub mod normal_equations;
 pub mod power_map;
 pub mod predicted_form;
+pub mod registration;
+pub mod residual;
+pub mod setup;
+pub mod zernike_fit;
 
 use crate::analysis::linearization::{LinearizationCheck, LinearizationReport};
 use crate::analysis::predicted_form::{FormPredictor, FormSettings, PredictedForm};

@@ -13,7 +13,11 @@
 //! passes' arcs, `H(ρ) = min_p c*_p − √(r² − (ρ − ρ*_p)²)` over the passes with
 //! `|ρ − ρ*_p| ≤ w` (the passes through the opposite half-plane φ + π count too, at −ρ*: near the
 //! axis the arc reaches across it). Rake and clearance faces are not modelled; the edge alone
-//! shapes the surface.
+//! shapes the surface. A measured edge (`tool.waviness`, [`crate::tool::waviness`]) replaces the
+//! circle's depth `√(r² − d²)` by its own at the offset d, the centre lies `R(0)` above the
+//! commanded tip, and w is the edge's own reach; the edge must be convex (checked), so that its
+//! translates still cross at most once, and two pieces switch where their difference, monotone,
+//! changes sign (found by bisection instead of the circles' closed form).
 //!
 //! **Grid.** `angles` (even) half-planes φ_j = j·2π/angles, radial samples ρ_i = i·h with
 //! `h ≤ f/4` (default f/16, f the feed per revolution). The form error is
@@ -63,7 +67,7 @@ use crate::path::PathPoint;
 use crate::progress::PROGRESS_EVERY;
 use crate::raster::Raster;
 use crate::surface::{Surface, UndefinedError};
-use crate::tool::ToolPath;
+use crate::tool::{ToolPath, Waviness};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, VecDeque};
 use std::f64::consts::TAU;
@@ -262,7 +266,18 @@ impl<'a> FormPredictor<'a> {
             )
             .into());
         }
-        let w = r * nose.half_angle().sin();
+        let w = nose.reach();
+        if let Some(edge) = nose.waviness()
+            && let Some(at) = edge.first_concave(-nose.half_angle(), nose.half_angle())
+        {
+            return Err(FieldError::new(
+                "tool.waviness",
+                format!("the measured edge near a = {:.3}°", at.to_degrees()),
+                "must be convex for the predicted form (its envelope of cuts assumes an edge \
+                 that bends one way): the table's deviations change too fast there",
+            )
+            .into());
+        }
         if f >= 2.0 * w {
             return Err(FieldError::new(
                 "strategy.feed_mm_per_rev",
@@ -294,7 +309,11 @@ impl<'a> FormPredictor<'a> {
             n,
             delta,
             h,
-            r,
+            edge: Edge {
+                r,
+                measured: nose.waviness(),
+            },
+            tip: nose.tip_offset(),
             w,
             f,
             rho_max,
@@ -371,7 +390,7 @@ impl<'a> FormPredictor<'a> {
         let z = a.1 + t * (b.1 - a.1);
         let g = self.ctx.grid;
         let plane = &mut self.planes[j];
-        plane.add_pass(rho, z + g.r, &g);
+        plane.add_pass(rho, z + g.tip, &g);
         plane.walk(&mut self.ctx, (plane.latest + g.w).max(g.w))?;
         Ok(())
     }
@@ -395,7 +414,7 @@ impl<'a> FormPredictor<'a> {
             for (plane, other) in [(j, &arcs_k), (k, &arcs_j)] {
                 // The opposite arcs at −ρ*, in decreasing signed position.
                 for &(a, c) in other.iter().rev() {
-                    insert(&mut self.planes[plane].pieces, -a, c, g.r, g.w);
+                    insert(&mut self.planes[plane].pieces, -a, c, g.edge, g.w);
                 }
             }
             for plane in [j, k] {
@@ -415,15 +434,17 @@ impl<'a> FormPredictor<'a> {
 
 /// The grid and the tool.
 #[derive(Debug, Clone, Copy)]
-struct Grid {
+struct Grid<'a> {
     /// Half-planes.
     n: usize,
     /// Angle between half-planes, radians.
     delta: f64,
     /// Radial step, mm.
     h: f64,
-    /// Nose radius, mm.
-    r: f64,
+    /// The cutting edge.
+    edge: Edge<'a>,
+    /// Height of the nose centre above the commanded tip, mm: r, or R(0) for a measured edge.
+    tip: f64,
     /// Reach of the arc either side of the nose centre, `r·sin(β/2)`, mm.
     w: f64,
     /// Feed per revolution, mm: the radius of the centre disc.
@@ -436,7 +457,7 @@ struct Grid {
 #[derive(Debug)]
 struct Context<'a> {
     surface: &'a dyn Surface,
-    grid: Grid,
+    grid: Grid<'a>,
     stats: Stats,
     map: Option<MapAcc>,
     /// The half-plane recorded ([`predict_section`]) and its samples, outermost first.
@@ -464,18 +485,42 @@ struct Piece {
 }
 
 impl Piece {
-    fn height(&self, u: f64, r: f64) -> f64 {
-        let d = u - self.a;
-        self.c - (r * r - d * d).max(0.0).sqrt()
+    fn height(&self, u: f64, e: Edge) -> f64 {
+        self.c - e.depth(u - self.a)
     }
 }
+
+/// The cutting edge's profile below the nose centre: the circle of radius r, or a measured edge.
+#[derive(Debug, Clone, Copy)]
+struct Edge<'a> {
+    r: f64,
+    measured: Option<&'a Waviness>,
+}
+
+impl Edge<'_> {
+    /// The edge's depth below the centre at the horizontal offset `d`, mm.
+    fn depth(&self, d: f64) -> f64 {
+        match self.measured {
+            None => (self.r * self.r - d * d).max(0.0).sqrt(),
+            Some(w) => w.depth(d),
+        }
+    }
+}
+
+/// Bisection steps of a measured edge's switch point: the overlap (≤ 2w) shrinks below 1e-15 of
+/// it.
+const SWITCH_BISECTIONS: usize = 60;
 
 /// Where the arc (a, c) inserted below `top` (a ≤ top.a, overlapping domains) stops being the
 /// lower: it is for u < x, `top` for u > x, over the overlap `[top.a − w, a + w]`. Two lower arcs
 /// of equal radius cross at most once, at the lower intersection of their circles; when that
 /// point is not on both arcs, one arc is the lower over the whole overlap.
-fn switch_point(top: &Piece, a: f64, c: f64, r: f64, w: f64) -> f64 {
+fn switch_point(top: &Piece, a: f64, c: f64, e: Edge, w: f64) -> f64 {
     let (lo, hi) = (top.a - w, a + w);
+    if e.measured.is_some() {
+        return measured_switch_point(top, a, c, e, lo, hi);
+    }
+    let r = e.r;
     let (da, dc) = (a - top.a, c - top.c);
     let d2 = da * da + dc * dc;
     if d2 > 0.0 && d2 < 4.0 * r * r {
@@ -488,16 +533,40 @@ fn switch_point(top: &Piece, a: f64, c: f64, r: f64, w: f64) -> f64 {
     }
     let m = 0.5 * (lo + hi);
     let new = Piece { a, c, lo, hi };
-    if new.height(m, r) < top.height(m, r) {
+    if new.height(m, e) < top.height(m, e) {
         hi
     } else {
         lo
     }
 }
 
+/// [`switch_point`] for a measured (convex) edge: the difference of the two cuts, new − top,
+/// grows with u over the overlap `[lo, hi]`; where it changes sign is found by bisection, and
+/// where it does not, one cut is the lower over the whole overlap.
+fn measured_switch_point(top: &Piece, a: f64, c: f64, e: Edge, lo: f64, hi: f64) -> f64 {
+    let new = Piece { a, c, lo, hi };
+    let diff = |u: f64| new.height(u, e) - top.height(u, e);
+    if diff(lo) >= 0.0 {
+        return lo;
+    }
+    if diff(hi) <= 0.0 {
+        return hi;
+    }
+    let (mut l, mut h) = (lo, hi);
+    for _ in 0..SWITCH_BISECTIONS {
+        let m = 0.5 * (l + h);
+        if diff(m) < 0.0 {
+            l = m;
+        } else {
+            h = m;
+        }
+    }
+    0.5 * (l + h)
+}
+
 /// Adds the arc of centre (a, c), a no larger than any in `stack`, to the lower envelope
 /// `stack` (outermost piece first).
-fn insert(stack: &mut VecDeque<Piece>, a: f64, c: f64, r: f64, w: f64) {
+fn insert(stack: &mut VecDeque<Piece>, a: f64, c: f64, e: Edge, w: f64) {
     // A path whose radius grew would break the order; clamp (planned paths never do).
     let a = stack.back().map_or(a, |t| a.min(t.a));
     loop {
@@ -520,7 +589,7 @@ fn insert(stack: &mut VecDeque<Piece>, a: f64, c: f64, r: f64, w: f64) {
             });
             return;
         }
-        let x = switch_point(top, a, c, r, w);
+        let x = switch_point(top, a, c, e, w);
         if x >= top.hi {
             stack.pop_back();
             continue;
@@ -633,7 +702,7 @@ impl HalfPlane {
             self.next = Some((self.edge / g.h).floor() as usize);
         }
         self.latest = self.latest.min(rho);
-        insert(&mut self.pieces, rho, c, g.r, g.w);
+        insert(&mut self.pieces, rho, c, g.edge, g.w);
     }
 
     /// Evaluates the samples above `above`, outermost first.
@@ -661,7 +730,7 @@ impl HalfPlane {
             return Ok(());
         }
         let g = &ctx.grid;
-        let z = p.height(rho, g.r);
+        let z = p.height(rho, g.edge);
         let design = ctx.surface.sag(rho * self.cos, rho * self.sin)?;
         let e = z - design;
         if !e.is_finite() {
@@ -713,7 +782,7 @@ impl HalfPlane {
             && p.lo <= self.edge
         {
             let x = p.lo;
-            let e = p.height(x, g.r) - ctx.surface.sag(x * self.cos, x * self.sin)?;
+            let e = p.height(x, g.edge) - ctx.surface.sag(x * self.cos, x * self.sin)?;
             if e.is_finite() {
                 ctx.stats.extreme(x >= g.f, e);
                 if x >= g.f {
@@ -994,8 +1063,9 @@ mod tests {
                 a -= [0.0, 0.01, 0.05, 0.9][(lcg(&mut state) * 4.0) as usize];
             }
             let mut stack = VecDeque::new();
+            let edge = Edge { r, measured: None };
             for &(a, c) in &arcs {
-                insert(&mut stack, a, c, r, w);
+                insert(&mut stack, a, c, edge, w);
             }
             for p in stack.iter().zip(stack.iter().skip(1)) {
                 assert!(p.0.lo >= p.1.hi, "{:?}", p);
@@ -1011,7 +1081,7 @@ mod tests {
                 match (want, piece) {
                     (None, None) => {}
                     (Some(z), Some(p)) => {
-                        assert!((p.height(u, r) - z).abs() < 1e-12, "case {case} u {u}")
+                        assert!((p.height(u, edge) - z).abs() < 1e-12, "case {case} u {u}")
                     }
                     _ => panic!("case {case} u {u}: {want:?} vs {piece:?}"),
                 }

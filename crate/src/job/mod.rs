@@ -9,7 +9,7 @@
 //! (the samplers the sampling, the compensator the tool) when they are built. Every error
 //! names the field.
 //!
-//! - [`tool`]: `tool` (nose radius, included, rake and clearance angles);
+//! - [`tool`]: `tool` (nose radius, included, rake and clearance angles, measured edge waviness);
 //! - [`strategy`]: `strategy` (feed, sampling, direction, compensation, split);
 //! - [`machine`]: `machine` (spindle, slides, servo, block rate) and the example presets;
 //! - [`output`]: `output` (dialect, decimals, signs, feed mode, approach);
@@ -33,7 +33,7 @@ pub use machine::MachineSpec;
 pub use output::{Dialect, FeedMode, OutputSpec};
 pub use program::{LoopKind, PassGroup, ProgramSpec};
 pub use strategy::{Compensation, Direction, Sampling, SplitSpec, StrategySpec};
-pub use tool::{ToolAngles, ToolSpec};
+pub use tool::{ToolAngles, ToolSpec, WavinessSpec};
 
 use crate::field::{FieldError, finite, join_path, non_negative, positive};
 use crate::surface::{PartDisc, Reframed, Surface, SurfaceSpec, Turned};

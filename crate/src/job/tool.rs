@@ -1,6 +1,8 @@
 //! The tool of a job (`tool`): the diamond's nose radius and included angle, which the
 //! compensation uses ([`crate::tool`]), and its rake and front clearance angles, which the tool
-//! geometry check uses ([`crate::tool::geometry`], paper 000 "Optimization of tool geometry").
+//! geometry check uses ([`crate::tool::geometry`], paper 000 "Optimization of tool geometry"),
+//! and optionally the measured deviation of its edge from the circle ([`WavinessSpec`], used by
+//! the one-way compensation and the predicted form through [`crate::tool::waviness`]).
 
 use crate::field::{FieldError, in_range};
 use serde::{Deserialize, Serialize};
@@ -23,6 +25,28 @@ pub struct ToolSpec {
     /// check, not by the compensation.
     #[serde(default = "default_clearance")]
     pub clearance_deg: f64,
+    /// The nose's measured deviation from its circle, as tool makers and nose interferometers
+    /// give it; absent, the edge is the circle of radius `nose_radius_mm`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub waviness: Option<WavinessSpec>,
+}
+
+/// The measured edge of a round nose (`tool.waviness`): its radius at nose angle a is
+/// `r(a) = nose_radius_mm + δ(a)`, δ read from the table (see [`crate::tool::waviness`] for the
+/// interpolation and the checks).
+///
+/// The angle is measured in the radial plane from the tool axis (−Z, the tip: a = 0), positive
+/// towards larger radius (the part's rim, +X for a tool cutting at X ≥ 0), as the one-way
+/// compensation's contact angle is; δ is positive where the edge lies outside the circle (a
+/// larger radius there).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WavinessSpec {
+    /// Nose angles a, degrees, strictly increasing, covering the arc ±β/2
+    /// (`tool.included_angle_deg`); 2 … 10 000 of them.
+    pub angle_deg: Vec<f64>,
+    /// Radial deviation δ at each angle, µm; |δ| at most 5 % of the nose radius.
+    pub deviation_um: Vec<f64>,
 }
 
 fn default_included_angle() -> f64 {
@@ -42,6 +66,7 @@ impl ToolSpec {
             included_angle_deg: default_included_angle(),
             rake_deg: 0.0,
             clearance_deg: default_clearance(),
+            waviness: None,
         }
     }
 

@@ -26,6 +26,11 @@ pub struct TermSpec {
     /// Rotation of the term about Z, degrees, counter-clockwise seen from +Z; default 0.
     #[serde(default)]
     pub rotation_deg: f64,
+    /// Marks the measured correction that `spiralcam correct` wrote (a grid of −gain ×
+    /// residual): a later correction of the job adds its residual to this term instead of
+    /// adding a term; default false. It does not change the sag.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub correction: bool,
 }
 
 /// Job entry of a composite surface: `base + Σ terms`.
@@ -267,6 +272,7 @@ mod tests {
                 decenter_x_mm: 0.5,
                 decenter_y_mm: 0.0,
                 rotation_deg: 30.0,
+                correction: false,
             }],
         };
         let comp = Composite::new(&spec, PartDisc::centred(5.0)).unwrap();
@@ -305,6 +311,7 @@ mod tests {
                 decenter_x_mm: 0.0,
                 decenter_y_mm: 0.0,
                 rotation_deg: 0.0,
+                correction: false,
             }],
         };
         assert_eq!(

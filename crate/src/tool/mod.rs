@@ -7,6 +7,8 @@
 //! - [`reach`]: the zones the nose cannot reach (concave with a curvature radius below r);
 //! - [`geometry`]: the critical rake, clearance and included angles and the holder tilt
 //!   (paper 000, "Optimization of tool geometry");
+//! - [`waviness`]: the measured edge `tool.waviness`, r(a) = r + δ(a) (PCHIP between the
+//!   table's angles), used by the one-way compensation, the concave zones and the predicted form;
 //! - [`tool_path`]: a job's surface, spiral and compensator together, streaming the commanded
 //!   points that every stage above reads.
 
@@ -15,7 +17,9 @@ pub mod one_way;
 pub mod reach;
 pub mod tool_path;
 pub mod two_way;
+pub mod waviness;
 
 pub use one_way::{Contact, NoseCompensator};
 pub use tool_path::{Probe, ToolPath, spiral};
 pub use two_way::{TwoWay, max_principal_curvature};
+pub use waviness::Waviness;

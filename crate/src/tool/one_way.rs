@@ -23,7 +23,16 @@
 //! follows the sag.
 //!
 //! The arc is cut at the part's edge: beyond `limit_radius_mm` there is no material.
+//!
+//! **Measured edge** (`tool.waviness`, [`super::waviness`]): the edge has the radius
+//! `R(a) = r + δ(a)`, so `F(a) = f(ρ_s + R(a)·sin a) + R(a)·cos a`, with
+//! `F′ = f′·u′ + v′` and `F″ = f″·u′² + f′·u″ + v″` for `u = R·sin a`, `v = R·cos a`; the
+//! maximum over the arc stays the rule, so the path is gouge-free for the measured edge. The
+//! table's angles inside the arc are sampled besides the grid (δ is a cubic between them, its
+//! extrema at them), and the tip the NC commands is `R(0)` below the centre. A constant δ is
+//! exactly a nose of radius r + δ. Without a table every computation is the circle's, unchanged.
 
+use super::waviness::Waviness;
 use crate::field::{FieldError, in_range, non_negative};
 use crate::job::ToolSpec;
 use crate::surface::{Line, Surface, UndefinedError};
@@ -56,6 +65,8 @@ pub struct NoseCompensator {
     /// (a, sin a, cos a) of the sample grid over the whole arc, the usual case away from the
     /// part edge: tabulated once rather than per point.
     grid: Vec<[f64; 3]>,
+    /// The measured edge, if the job gives one.
+    waviness: Option<Waviness>,
 }
 
 /// Bounds on the grid of nose angles sampled before refinement.
@@ -83,6 +94,11 @@ impl NoseCompensator {
             ));
         }
         let half_angle = (beta / 2.0).to_radians();
+        let waviness = tool
+            .waviness
+            .as_ref()
+            .map(|w| Waviness::new(w, r, half_angle))
+            .transpose()?;
         let chord = 2.0 * r * half_angle.sin();
         let wanted = (chord / feature_length_mm * STEPS_PER_FEATURE).ceil();
         // An odd number of intervals keeps a = 0 off the grid: over flat land F′(0) = 0, and a
@@ -105,7 +121,43 @@ impl NoseCompensator {
             samples,
             limit_radius: limit_radius_mm,
             grid,
+            waviness,
         })
+    }
+
+    /// The measured edge, if any.
+    pub fn waviness(&self) -> Option<&Waviness> {
+        self.waviness.as_ref()
+    }
+
+    /// The edge's radius at nose angle `a`, mm: r, or `r + δ(a)` for a measured edge.
+    pub fn edge_radius(&self, a: f64) -> f64 {
+        self.waviness.as_ref().map_or(self.r, |w| w.radius(a)[0])
+    }
+
+    /// The distance from the nose centre down to the tip (a = 0), mm: what the NC's tip lies
+    /// below the centre.
+    pub fn tip_offset(&self) -> f64 {
+        self.edge_radius(0.0)
+    }
+
+    /// The depth of the edge below the nose centre at the horizontal offset `d` (|d| within the
+    /// reach), mm: `√(r² − d²)` for the circle, [`Waviness::depth`] for a measured edge.
+    pub fn edge_depth(&self, d: f64) -> f64 {
+        match &self.waviness {
+            None => (self.r * self.r - d * d).max(0.0).sqrt(),
+            Some(w) => w.depth(d),
+        }
+    }
+
+    /// How far the edge reaches either side of the centre, mm: `r·sin(β/2)`, or the larger of
+    /// the measured edge's two ends.
+    pub fn reach(&self) -> f64 {
+        let h = self.half_angle;
+        match &self.waviness {
+            None => self.r * h.sin(),
+            Some(w) => w.radius(h)[0].max(w.radius(-h)[0]) * h.sin(),
+        }
     }
 
     /// Nose radius, mm.
@@ -122,10 +174,13 @@ impl NoseCompensator {
     pub fn arc_range(&self, rho_s: f64) -> (f64, f64) {
         let r = self.r;
         let clamp_asin = |s: f64| s.clamp(-1.0, 1.0).asin();
-        let hi = self
-            .half_angle
-            .min(clamp_asin((self.limit_radius - rho_s) / r));
-        let lo = (-self.half_angle).max(clamp_asin((-self.limit_radius - rho_s) / r));
+        let (to_rim, to_far_rim) = (self.limit_radius - rho_s, -self.limit_radius - rho_s);
+        let (hi, lo) = match &self.waviness {
+            None => (clamp_asin(to_rim / r), clamp_asin(to_far_rim / r)),
+            Some(w) => (w.angle_at_offset(to_rim), w.angle_at_offset(to_far_rim)),
+        };
+        let hi = self.half_angle.min(hi);
+        let lo = (-self.half_angle).max(lo);
         (lo, hi.max(lo))
     }
 
@@ -167,6 +222,7 @@ impl NoseCompensator {
             c,
             s,
             r,
+            edge: self.waviness.as_ref(),
         };
         let (lo, hi) = self.arc_range(rho_s);
         let n = self.samples;
@@ -192,11 +248,15 @@ impl NoseCompensator {
         let best = scan.best;
         let at_arc_end =
             (best.a - self.half_angle).abs() < 1e-12 || (best.a + self.half_angle).abs() < 1e-12;
+        let (tip, reach) = match &self.waviness {
+            None => (r, r),
+            Some(_) => (self.tip_offset(), self.edge_radius(best.a)),
+        };
         Ok(Contact {
             z_center: best.f,
-            z_tip: best.f - r,
+            z_tip: best.f - tip,
             angle: best.a,
-            rho: rho_s + r * best.a.sin(),
+            rho: rho_s + reach * best.a.sin(),
             z: best.z,
             at_arc_end: at_arc_end && best.g.abs() > 1e-12 * r,
         })
@@ -209,7 +269,8 @@ const KINK_OFFSET: f64 = 1e-12;
 
 impl NoseCompensator {
     /// Nose angles just before and after each slope kink of the section under the arc
-    /// ([`Surface::slope_kinks`]), ascending.
+    /// ([`Surface::slope_kinks`]), and the measured edge's table angles inside the arc,
+    /// ascending.
     fn kink_angles(
         &self,
         surface: &dyn Surface,
@@ -223,17 +284,23 @@ impl NoseCompensator {
         let mut kinks = Vec::new();
         surface.slope_kinks(
             Line::radial(c, s),
-            rho_s + r * lo.sin(),
-            rho_s + r * hi.sin(),
+            rho_s + self.edge_radius(lo) * lo.sin(),
+            rho_s + self.edge_radius(hi) * hi.sin(),
             &mut kinks,
         );
-        if kinks.is_empty() {
+        let table: &[f64] = self.waviness.as_ref().map_or(&[], |w| w.angles());
+        if kinks.is_empty() && table.is_empty() {
             return kinks;
         }
+        let to_angle = |t: f64| match &self.waviness {
+            None => ((t - rho_s) / r).clamp(-1.0, 1.0).asin(),
+            Some(w) => w.angle_at_offset(t - rho_s),
+        };
         let mut angles: Vec<f64> = kinks
             .iter()
-            .map(|t| ((t - rho_s) / r).clamp(-1.0, 1.0).asin())
+            .map(|&t| to_angle(t))
             .flat_map(|a| [a - KINK_OFFSET, a + KINK_OFFSET])
+            .chain(table.iter().copied())
             .filter(|a| *a > lo && *a < hi)
             .collect();
         angles.sort_by(f64::total_cmp);
@@ -289,6 +356,7 @@ struct Section<'a> {
     c: f64,
     s: f64,
     r: f64,
+    edge: Option<&'a Waviness>,
 }
 
 /// F(a), F′(a), F″(a) and the sag at the arc point.
@@ -309,6 +377,9 @@ impl Section<'_> {
 
     /// As [`Section::at`] with sin a and cos a given.
     fn at_sin_cos(&self, a: f64, sa: f64, ca: f64) -> Result<Sample, UndefinedError> {
+        if let Some(edge) = self.edge {
+            return self.at_measured(edge, a, sa, ca);
+        }
         let r = self.r;
         let rho = self.rho_s + r * sa;
         let l = self
@@ -320,6 +391,31 @@ impl Section<'_> {
             f: l.z + r * ca,
             g: r * ca * l.slope - r * sa,
             gg: r * r * ca * ca * l.curvature_term - r * sa * l.slope - r * ca,
+            z: l.z,
+        })
+    }
+
+    /// [`Section::at_sin_cos`] for the measured edge R(a) (see the module docs).
+    fn at_measured(
+        &self,
+        edge: &Waviness,
+        a: f64,
+        sa: f64,
+        ca: f64,
+    ) -> Result<Sample, UndefinedError> {
+        let [rr, r1, r2] = edge.radius(a);
+        let (u1, u2) = (r1 * sa + rr * ca, r2 * sa + 2.0 * r1 * ca - rr * sa);
+        let (v1, v2) = (r1 * ca - rr * sa, r2 * ca - 2.0 * r1 * sa - rr * ca);
+        let rho = self.rho_s + rr * sa;
+        let l = self
+            .surface
+            .local(rho * self.c, rho * self.s)?
+            .radial(self.c, self.s);
+        Ok(Sample {
+            a,
+            f: l.z + rr * ca,
+            g: l.slope * u1 + v1,
+            gg: l.curvature_term * u1 * u1 + l.slope * u2 + v2,
             z: l.z,
         })
     }

@@ -13,7 +13,8 @@
 //!
 //! Depth: the cut surface is the lower envelope of the nose arcs, `cut(u) = min_ρs [z_c(ρ_s) − √(r²
 //! − (u − ρ_s)²)]`, with z_c the compensated centre height ([`crate::tool`]); the form error is the
-//! closing residual `cut(u) − f(u)`. It is found on a grid around the zone and refined by nested
+//! closing residual `cut(u) − f(u)` (with a measured edge, `tool.waviness`, the edge's own depth
+//! below the centre replaces the circle's, [`NoseCompensator::edge_depth`]). It is found on a grid around the zone and refined by nested
 //! golden-section searches (over u for the largest residual, over ρ_s for the envelope), because at
 //! a kink both functions have corners that a grid would only resolve to first order. The depth
 //! reported is the largest of those found at up to five angles of each zone: the sharpest, and four
@@ -429,7 +430,7 @@ impl<'a> Envelope<'a> {
         part_radius: f64,
     ) -> Self {
         let (s, c) = theta.sin_cos();
-        let half_width = nose.nose_radius() * nose.half_angle().sin();
+        let half_width = nose.reach();
         Self {
             surface,
             nose,
@@ -448,8 +449,7 @@ impl<'a> Envelope<'a> {
     }
 
     fn arc(&self, z_center: f64, offset: f64) -> f64 {
-        let r = self.nose.nose_radius();
-        z_center - (r * r - offset * offset).max(0.0).sqrt()
+        z_center - self.nose.edge_depth(offset)
     }
 
     fn sag(&self, u: f64) -> Result<f64, UndefinedError> {

@@ -94,6 +94,15 @@ impl ToolPath {
             job.material_radius_mm(),
         )
         .map_err(|e| e.within("tool"))?;
+        if nose.waviness().is_some() && job.strategy.compensation == Compensation::TwoWay {
+            return Err(FieldError::new(
+                "tool.waviness",
+                "set",
+                "is used by the one-way compensation only: set strategy.compensation to one_way, \
+                 or remove tool.waviness",
+            )
+            .into());
+        }
         let spiral = spiral(
             job.outer_radius_mm(),
             &job.strategy,

@@ -42,6 +42,11 @@ pub fn parse_with(args: &[String], allowed: &[&str], first: &str) -> Result<Args
             "--cut" => "optic or mould",
             "--surface" | "--nx" | "--ny" => "a whole number",
             f if f.starts_with("--max-") || f.ends_with("-mm") => "a number",
+            "--gain" | "--rotate" => "a number",
+            "--kind" => "error or height",
+            "--register" => "a list of terms",
+            "--mirror" => "x or y",
+            "--params" => "a JSON file",
             _ => "a file name",
         };
         let value = it

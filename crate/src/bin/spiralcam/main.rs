@@ -7,6 +7,10 @@
 //! spiralcam sag JOB.json --at POINTS.csv
 //! spiralcam import DESIGN [--surface N] [--cut optic|mould] [--diameter-mm D] --out JOB.json
 //! spiralcam export-grid JOB.json --nx N --ny N --out FILE.DAT [--half-width-mm W]
+//! spiralcam correct JOB.json --measured FILE --kind error|height [--gain G] [--register TERMS]
+//!                   [--rotate DEG] [--mirror x|y] [--out CORRECTED.json] [--report FILE]
+//!                   [--maps PREFIX]
+//! spiralcam setup JOB.json --params SETUP.json [--report FILE]
 //! ```
 //!
 //! Every job is admitted before work ([`spiralcam::plan::admission`]): its points, the size of
@@ -20,11 +24,13 @@ mod analyse;
 mod args;
 mod bar;
 mod cancel;
+mod correct;
 mod export_grid;
 mod files;
 mod import;
 mod plan;
 mod sag;
+mod setup;
 
 use spiralcam::job::Job;
 use spiralcam::surface::data_file::MAX_DATA_BYTES;
@@ -38,6 +44,10 @@ const USAGE: &str = "usage:
   spiralcam sag JOB.json --at POINTS.csv
   spiralcam import DESIGN [--surface N] [--cut optic|mould] [--diameter-mm D] --out JOB.json
   spiralcam export-grid JOB.json --nx N --ny N --out FILE.DAT [--half-width-mm W]
+  spiralcam correct JOB.json --measured FILE --kind error|height [--gain G] [--register TERMS]
+                    [--rotate DEG] [--mirror x|y] [--out CORRECTED.json] [--report FILE]
+                    [--maps PREFIX]
+  spiralcam setup JOB.json --params SETUP.json [--report FILE]
   spiralcam help [COMMAND] | COMMAND --help | --version";
 
 /// The most a job file may weigh, bytes: it may carry its data files as text.
@@ -77,7 +87,9 @@ fn main() -> ExitCode {
     let command = args.first().map(String::as_str);
     let rest = args.get(1..).unwrap_or(&[]);
     let result = match command {
-        Some("plan" | "analyse" | "sag" | "import" | "export-grid") if args::wants_help(rest) => {
+        Some("plan" | "analyse" | "sag" | "import" | "export-grid" | "correct" | "setup")
+            if args::wants_help(rest) =>
+        {
             help(command);
             Ok(())
         }
@@ -86,6 +98,8 @@ fn main() -> ExitCode {
         Some("sag") => sag::run(rest),
         Some("import") => import::run(rest),
         Some("export-grid") => export_grid::run(rest),
+        Some("correct") => correct::run(rest),
+        Some("setup") => setup::run(rest),
         Some("help") => {
             help(rest.first().map(String::as_str));
             Ok(())
@@ -95,14 +109,14 @@ fn main() -> ExitCode {
             Ok(())
         }
         None => Err(Failure::Usage(
-            "expected a command: plan, analyse, sag, import or export-grid".into(),
+            "expected a command: plan, analyse, sag, import, export-grid, correct or setup".into(),
         )),
         Some("--version" | "-V") => {
             println!("spiralcam {}", env!("CARGO_PKG_VERSION"));
             Ok(())
         }
         Some(other) => Err(Failure::Usage(format!(
-            "unknown command {other}: expected a command: plan, analyse, sag, import or export-grid"
+            "unknown command {other}: expected a command: plan, analyse, sag, import, export-grid, correct or setup"
         ))),
     };
     match result {
@@ -130,6 +144,8 @@ fn help(command: Option<&str>) {
         Some("sag") => println!("{}", sag::HELP),
         Some("import") => println!("{}", import::HELP),
         Some("export-grid") => println!("{}", export_grid::HELP),
+        Some("correct") => println!("{}", correct::HELP),
+        Some("setup") => println!("{}", setup::HELP),
         _ => println!("{USAGE}"),
     }
 }

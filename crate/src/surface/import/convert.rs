@@ -122,6 +122,7 @@ impl EvenAsphere {
                 decenter_x_mm: decentre_mm[0],
                 decenter_y_mm: decentre_mm[1],
                 rotation_deg: 0.0,
+                correction: false,
             }],
         })
     }

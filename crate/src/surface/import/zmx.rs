@@ -797,6 +797,7 @@ fn shape(r: &Raw, scale: Scale, read: &mut Vec<String>) -> Result<SurfaceSpec, S
                         decenter_x_mm: 0.0,
                         decenter_y_mm: 0.0,
                         rotation_deg: 0.0,
+                        correction: false,
                     }],
                 })),
             }

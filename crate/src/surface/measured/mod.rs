@@ -9,6 +9,7 @@
 //! | CSV point cloud (profilometers, coordinate measuring machines) | [`csv`] | points |
 //! | Zygo `.datx` (HDF5; Mx, newer MetroPro) | [`datx`] | grid with nodata |
 //! | Zygo MetroPro `.dat` (binary, header formats 1–3) | [`metropro`] | grid with nodata |
+//! | Zemax Grid Sag `.DAT` (text; metrology scripts export it) | [`grid_sag`] | grid with nodata |
 //!
 //! `crate/docs/measured-data.md` describes each format as read, its units, frame and limits, and
 //! the public readers the layouts were taken from.
@@ -20,6 +21,7 @@
 pub mod csv;
 pub mod datx;
 mod error;
+pub mod grid_sag;
 pub mod map;
 pub mod metropro;
 pub mod orientation;
@@ -44,6 +46,8 @@ pub enum Format {
     Datx,
     /// Zygo MetroPro `.dat` ([`metropro`]).
     MetroPro,
+    /// Zemax Grid Sag `.DAT` ([`grid_sag`]).
+    GridSag,
 }
 
 /// The HDF5 signature at the start of a `.datx`.
@@ -51,7 +55,8 @@ const HDF5_MAGIC: &[u8] = b"\x89HDF\r\n\x1a\n";
 
 impl Format {
     /// The format of the file `name` with contents `bytes`: by signature (HDF5, MetroPro's
-    /// magic numbers) first, then a `.csv` or `.txt` name for text.
+    /// magic numbers) first, then by name: `.csv` or `.txt` for a point cloud, `.dat` (without
+    /// MetroPro's magic number) for a Zemax Grid Sag file.
     pub fn detect(name: &str, bytes: &[u8]) -> Result<Format, MeasuredError> {
         if bytes.starts_with(HDF5_MAGIC) {
             return Ok(Format::Datx);
@@ -62,11 +67,13 @@ impl Format {
         let ext = name.rsplit_once('.').map(|(_, e)| e.to_ascii_lowercase());
         match ext.as_deref() {
             Some("csv" | "txt") => Ok(Format::Csv),
+            Some("dat") => Ok(Format::GridSag),
             _ => Err(MeasuredError::Format {
                 file: name.to_string(),
                 problem: "not a measured-data format spiralcam reads: expected a Zygo .datx \
                           (HDF5 signature), a MetroPro .dat (magic 881B036F, 881B0370 or \
-                          881B0371) or a CSV point cloud named .csv or .txt"
+                          881B0371), a Zemax Grid Sag .DAT (text) or a CSV point cloud named \
+                          .csv or .txt"
                     .into(),
             }),
         }
@@ -80,6 +87,7 @@ pub fn read(name: &str, bytes: Vec<u8>) -> Result<MeasuredMap, MeasuredError> {
         Format::Csv => csv::read(name, &bytes),
         Format::Datx => datx::read(name, bytes),
         Format::MetroPro => metropro::read(name, &bytes),
+        Format::GridSag => grid_sag::read(name, &bytes),
     }
 }
 
@@ -107,7 +115,11 @@ mod tests {
         mp.resize(10, 0);
         assert_eq!(Format::detect("a.DAT", &mp).unwrap(), Format::MetroPro);
         assert_eq!(Format::detect("scan.CSV", b"x_mm").unwrap(), Format::Csv);
-        let e = Format::detect("grid.dat", b"! Zemax grid").unwrap_err();
+        assert_eq!(
+            Format::detect("grid.DAT", b"33 33 1 1 0 0 0").unwrap(),
+            Format::GridSag
+        );
+        let e = Format::detect("grid.xyz", b"! Zemax grid").unwrap_err();
         assert!(
             e.to_string().contains("MetroPro .dat (magic 881B036F"),
             "{e}"

@@ -31,6 +31,39 @@ export class Accuracy {
 }
 
 /**
+ * A correction made: its report, maps and the corrected job.
+ */
+export class Corrected {
+    private constructor();
+    free(): void;
+    [Symbol.dispose](): void;
+    /**
+     * The residual predicted after the re-cut, µm.
+     */
+    readonly after_um: Float32Array;
+    /**
+     * The residual before, µm (mean per cell of the measured points; NaN where none).
+     */
+    readonly before_um: Float32Array;
+    /**
+     * The corrected job as JSON, its correction grid inline.
+     */
+    readonly job_json: string;
+    /**
+     * The file name of the corrected job's NC program: its name and the dialect's extension.
+     */
+    readonly nc_file_name: string;
+    /**
+     * The report as JSON (registration, residual, corrected, warnings).
+     */
+    readonly report: string;
+    /**
+     * Samples per side of both maps.
+     */
+    readonly size: number;
+}
+
+/**
  * A planned job: the report and what the page draws.
  */
 export class Planned {
@@ -185,6 +218,11 @@ export function colormap_css(): string;
 export function colormap_stops(): Float32Array;
 
 /**
+ * Corrects `job` with the measured file `name` (`bytes`) under `options` ([`CorrectOptions`]).
+ */
+export function correct(job: any, name: string, bytes: Uint8Array | number[], options: any): Corrected;
+
+/**
  * The CSV table of `job`, byte for byte what `spiralcam plan JOB --csv FILE` writes.
  */
 export function csv_table(job: any, progress: Function): Uint8Array;
@@ -195,10 +233,33 @@ export function csv_table(job: any, progress: Function): Uint8Array;
 export function default_job(): string;
 
 /**
+ * A designer's file (`name` says its format: `.zmx`, `.seq` or `.DAT`) read for the page's
+ * "Import design…": its surfaces as JSON ([`crate::design::design_surfaces`]).
+ */
+export function design_surfaces(name: string, bytes: Uint8Array | number[]): string;
+
+/**
+ * The servo's gridded table of a split `job` (`spiralcam plan JOB --fts-table FILE`): a zip of
+ * the Delta Tau PMAC table (`NAME-fts-grid.pmc`) and the same grid as CSV
+ * (`NAME-fts-grid.csv`), byte for byte what the command line writes.
+ */
+export function fts_grid(job: any, progress: Function): Uint8Array;
+
+/**
  * The fast tool servo's table of a split `job` (`c_deg,x_mm,w_mm`), byte for byte what
  * `spiralcam plan JOB --fts-csv FILE` writes.
  */
 export function fts_table(job: any, progress: Function): Uint8Array;
+
+/**
+ * A job from surface `surface` (`undefined`: the only one) of a designer's file, cut as
+ * `piece` (`"optic"`, `"mould"` or `""`) with the part's diameter `diameter_mm`
+ * (`undefined`: twice the semi-diameter); `file_names` and `file_texts` are the other files
+ * chosen with it (a Grid Sag `.DAT` the `.zmx` names). JSON `{job, listing, surface}`
+ * ([`crate::design::import_design`]), the job `spiralcam import` writes with its data carried
+ * as text.
+ */
+export function import_design(name: string, bytes: Uint8Array | number[], surface: number | null | undefined, piece: string, diameter_mm: number | null | undefined, file_names: string[], file_texts: string[]): string;
 
 /**
  * The example machines (`spiralcam::job::machine::presets`) as JSON: a list of objects with `key`,
@@ -208,7 +269,9 @@ export function fts_table(job: any, progress: Function): Uint8Array;
 export function machine_presets(): string;
 
 /**
- * The NC program of `job`, byte for byte what `spiralcam plan JOB --nc FILE` writes.
+ * The NC program of `job`, byte for byte what `spiralcam plan JOB --nc FILE` writes; for a
+ * program split into child programs (`program.max_program_bytes`), a zip of the main program
+ * (`NAME.nc`) and its children (`NAME-1.nc`, … as the command line names them beside it).
  */
 export function nc_program(job: any, progress: Function): Uint8Array;
 
@@ -225,6 +288,12 @@ export function plan(job: any, progress: Function): Planned;
 export function power_maps(job: any, size: number): PowerMaps | undefined;
 
 /**
+ * The offsets a test cut of `job` shows (`params`: the JSON of `spiralcam setup --params`),
+ * as JSON.
+ */
+export function setup_offsets(job: any, params: string): string;
+
+/**
  * The crate version, shown on the page.
  */
 export function version(): string;
@@ -234,6 +303,7 @@ export type InitInput = RequestInfo | URL | Response | BufferSource | WebAssembl
 export interface InitOutput {
     readonly memory: WebAssembly.Memory;
     readonly __wbg_accuracy_free: (a: number, b: number) => void;
+    readonly __wbg_corrected_free: (a: number, b: number) => void;
     readonly __wbg_planned_free: (a: number, b: number) => void;
     readonly __wbg_powermaps_free: (a: number, b: number) => void;
     readonly __wbg_viewer_free: (a: number, b: number) => void;
@@ -246,9 +316,19 @@ export interface InitOutput {
     readonly check_job: (a: any) => [number, number];
     readonly colormap_css: () => [number, number];
     readonly colormap_stops: () => [number, number];
+    readonly correct: (a: any, b: number, c: number, d: number, e: number, f: any) => [number, number, number];
+    readonly corrected_after_um: (a: number) => [number, number];
+    readonly corrected_before_um: (a: number) => [number, number];
+    readonly corrected_job_json: (a: number) => [number, number];
+    readonly corrected_nc_file_name: (a: number) => [number, number];
+    readonly corrected_report: (a: number) => [number, number];
+    readonly corrected_size: (a: number) => number;
     readonly csv_table: (a: any, b: any) => [number, number, number, number];
     readonly default_job: () => [number, number];
+    readonly design_surfaces: (a: number, b: number, c: number, d: number) => [number, number, number, number];
+    readonly fts_grid: (a: any, b: any) => [number, number, number, number];
     readonly fts_table: (a: any, b: any) => [number, number, number, number];
+    readonly import_design: (a: number, b: number, c: number, d: number, e: number, f: number, g: number, h: number, i: number, j: number, k: number, l: number, m: number) => [number, number, number, number];
     readonly machine_presets: () => [number, number];
     readonly nc_program: (a: any, b: any) => [number, number, number, number];
     readonly plan: (a: any, b: any) => [number, number, number];
@@ -267,6 +347,7 @@ export interface InitOutput {
     readonly powermaps_mean_d: (a: number) => [number, number];
     readonly powermaps_size: (a: number) => number;
     readonly powermaps_step_mm: (a: number) => number;
+    readonly setup_offsets: (a: any, b: number, c: number) => [number, number, number, number];
     readonly version: () => [number, number];
     readonly viewer_backend: (a: number) => [number, number];
     readonly viewer_create: (a: any) => any;
@@ -279,12 +360,12 @@ export interface InitOutput {
     readonly viewer_set_surface: (a: number, b: number, c: number, d: number, e: number, f: number, g: number, h: number, i: number) => void;
     readonly viewer_z_exaggeration: (a: number) => number;
     readonly viewer_zoom: (a: number, b: number) => void;
-    readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_46: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_47: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_57: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_58: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h6a9a4c771fb11aad: (a: number, b: number, c: any, d: any) => void;
     readonly wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__hc37317138617a3f5: (a: number, b: number, c: any) => void;
+    readonly wasm_bindgen__convert__closures_____invoke__h9a591c57c7a39bce: (a: number, b: number, c: any) => void;
     readonly __wbindgen_malloc: (a: number, b: number) => number;
     readonly __wbindgen_realloc: (a: number, b: number, c: number, d: number) => number;
     readonly __wbindgen_free: (a: number, b: number, c: number) => void;
@@ -293,6 +374,7 @@ export interface InitOutput {
     readonly __wbindgen_externrefs: WebAssembly.Table;
     readonly __wbindgen_destroy_closure: (a: number, b: number) => void;
     readonly __externref_table_dealloc: (a: number) => void;
+    readonly __externref_drop_slice: (a: number, b: number) => void;
     readonly __wbindgen_start: () => void;
 }
 

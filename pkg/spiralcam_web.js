@@ -78,6 +78,105 @@ export class Accuracy {
 if (Symbol.dispose) Accuracy.prototype[Symbol.dispose] = Accuracy.prototype.free;
 
 /**
+ * A correction made: its report, maps and the corrected job.
+ */
+export class Corrected {
+    static __wrap(ptr) {
+        const obj = Object.create(Corrected.prototype);
+        obj.__wbg_ptr = ptr;
+        CorrectedFinalization.register(obj, obj.__wbg_ptr, obj);
+        return obj;
+    }
+    __destroy_into_raw() {
+        const ptr = this.__wbg_ptr;
+        this.__wbg_ptr = 0;
+        CorrectedFinalization.unregister(this);
+        return ptr;
+    }
+    free() {
+        const ptr = this.__destroy_into_raw();
+        wasm.__wbg_corrected_free(ptr, 0);
+    }
+    /**
+     * The residual predicted after the re-cut, µm.
+     * @returns {Float32Array}
+     */
+    get after_um() {
+        const ret = wasm.corrected_after_um(this.__wbg_ptr);
+        var v1 = getArrayF32FromWasm0(ret[0], ret[1]).slice();
+        wasm.__wbindgen_free(ret[0], ret[1] * 4, 4);
+        return v1;
+    }
+    /**
+     * The residual before, µm (mean per cell of the measured points; NaN where none).
+     * @returns {Float32Array}
+     */
+    get before_um() {
+        const ret = wasm.corrected_before_um(this.__wbg_ptr);
+        var v1 = getArrayF32FromWasm0(ret[0], ret[1]).slice();
+        wasm.__wbindgen_free(ret[0], ret[1] * 4, 4);
+        return v1;
+    }
+    /**
+     * The corrected job as JSON, its correction grid inline.
+     * @returns {string}
+     */
+    get job_json() {
+        let deferred1_0;
+        let deferred1_1;
+        try {
+            const ret = wasm.corrected_job_json(this.__wbg_ptr);
+            deferred1_0 = ret[0];
+            deferred1_1 = ret[1];
+            return getStringFromWasm0(ret[0], ret[1]);
+        } finally {
+            wasm.__wbindgen_free(deferred1_0, deferred1_1, 1);
+        }
+    }
+    /**
+     * The file name of the corrected job's NC program: its name and the dialect's extension.
+     * @returns {string}
+     */
+    get nc_file_name() {
+        let deferred1_0;
+        let deferred1_1;
+        try {
+            const ret = wasm.corrected_nc_file_name(this.__wbg_ptr);
+            deferred1_0 = ret[0];
+            deferred1_1 = ret[1];
+            return getStringFromWasm0(ret[0], ret[1]);
+        } finally {
+            wasm.__wbindgen_free(deferred1_0, deferred1_1, 1);
+        }
+    }
+    /**
+     * The report as JSON (registration, residual, corrected, warnings).
+     * @returns {string}
+     */
+    get report() {
+        let deferred1_0;
+        let deferred1_1;
+        try {
+            const ret = wasm.corrected_report(this.__wbg_ptr);
+            deferred1_0 = ret[0];
+            deferred1_1 = ret[1];
+            return getStringFromWasm0(ret[0], ret[1]);
+        } finally {
+            wasm.__wbindgen_free(deferred1_0, deferred1_1, 1);
+        }
+    }
+    /**
+     * Samples per side of both maps.
+     * @returns {number}
+     */
+    get size() {
+        const ret = wasm.corrected_size(this.__wbg_ptr);
+        return ret >>> 0;
+    }
+}
+if (Symbol.dispose) Corrected.prototype[Symbol.dispose] = Corrected.prototype.free;
+
+/**
  * A planned job: the report and what the page draws.
  */
 export class Planned {
@@ -472,6 +571,33 @@ export function colormap_stops() {
 }
 
 /**
+ * Corrects `job` with the measured file `name` (`bytes`) under `options` ([`CorrectOptions`]).
+ * @param {any} job
+ * @param {string} name
+ * @param {Uint8Array | number[]} bytes
+ * @param {any} options
+ * @returns {Corrected}
+ */
+export function correct(job, name, bytes, options) {
+    let ptr0, len0, ptr1, len1;
+    try {
+        ptr0 = passStringToWasm0(name, wasm.__wbindgen_malloc, wasm.__wbindgen_realloc);
+        len0 = WASM_VECTOR_LEN;
+        ptr1 = passArray8ToWasm0(bytes, wasm.__wbindgen_malloc);
+        len1 = WASM_VECTOR_LEN;
+    } catch (e) {
+        if (ptr1) { wasm.__wbindgen_free(ptr1, len1 * 1, 1); }
+        if (ptr0) { wasm.__wbindgen_free(ptr0, len0 * 1, 1); }
+        throw e;
+    }
+    const ret = wasm.correct(job, ptr0, len0, ptr1, len1, options);
+    if (ret[2]) {
+        throw takeFromExternrefTable0(ret[1]);
+    }
+    return Corrected.__wrap(ret[0]);
+}
+
+/**
  * The CSV table of `job`, byte for byte what `spiralcam plan JOB --csv FILE` writes.
  * @param {any} job
  * @param {Function} progress
@@ -505,6 +631,61 @@ export function default_job() {
 }
 
 /**
+ * A designer's file (`name` says its format: `.zmx`, `.seq` or `.DAT`) read for the page's
+ * "Import design…": its surfaces as JSON ([`crate::design::design_surfaces`]).
+ * @param {string} name
+ * @param {Uint8Array | number[]} bytes
+ * @returns {string}
+ */
+export function design_surfaces(name, bytes) {
+    let deferred4_0;
+    let deferred4_1;
+    try {
+        let ptr0, len0, ptr1, len1;
+        try {
+            ptr0 = passStringToWasm0(name, wasm.__wbindgen_malloc, wasm.__wbindgen_realloc);
+            len0 = WASM_VECTOR_LEN;
+            ptr1 = passArray8ToWasm0(bytes, wasm.__wbindgen_malloc);
+            len1 = WASM_VECTOR_LEN;
+        } catch (e) {
+            if (ptr1) { wasm.__wbindgen_free(ptr1, len1 * 1, 1); }
+            if (ptr0) { wasm.__wbindgen_free(ptr0, len0 * 1, 1); }
+            throw e;
+        }
+        const ret = wasm.design_surfaces(ptr0, len0, ptr1, len1);
+        var ptr3 = ret[0];
+        var len3 = ret[1];
+        if (ret[3]) {
+            ptr3 = 0; len3 = 0;
+            throw takeFromExternrefTable0(ret[2]);
+        }
+        deferred4_0 = ptr3;
+        deferred4_1 = len3;
+        return getStringFromWasm0(ptr3, len3);
+    } finally {
+        wasm.__wbindgen_free(deferred4_0, deferred4_1, 1);
+    }
+}
+
+/**
+ * The servo's gridded table of a split `job` (`spiralcam plan JOB --fts-table FILE`): a zip of
+ * the Delta Tau PMAC table (`NAME-fts-grid.pmc`) and the same grid as CSV
+ * (`NAME-fts-grid.csv`), byte for byte what the command line writes.
+ * @param {any} job
+ * @param {Function} progress
+ * @returns {Uint8Array}
+ */
+export function fts_grid(job, progress) {
+    const ret = wasm.fts_grid(job, progress);
+    if (ret[3]) {
+        throw takeFromExternrefTable0(ret[2]);
+    }
+    var v1 = getArrayU8FromWasm0(ret[0], ret[1]).slice();
+    wasm.__wbindgen_free(ret[0], ret[1] * 1, 1);
+    return v1;
+}
+
+/**
  * The fast tool servo's table of a split `job` (`c_deg,x_mm,w_mm`), byte for byte what
  * `spiralcam plan JOB --fts-csv FILE` writes.
  * @param {any} job
@@ -519,6 +700,63 @@ export function fts_table(job, progress) {
     var v1 = getArrayU8FromWasm0(ret[0], ret[1]).slice();
     wasm.__wbindgen_free(ret[0], ret[1] * 1, 1);
     return v1;
+}
+
+/**
+ * A job from surface `surface` (`undefined`: the only one) of a designer's file, cut as
+ * `piece` (`"optic"`, `"mould"` or `""`) with the part's diameter `diameter_mm`
+ * (`undefined`: twice the semi-diameter); `file_names` and `file_texts` are the other files
+ * chosen with it (a Grid Sag `.DAT` the `.zmx` names). JSON `{job, listing, surface}`
+ * ([`crate::design::import_design`]), the job `spiralcam import` writes with its data carried
+ * as text.
+ * @param {string} name
+ * @param {Uint8Array | number[]} bytes
+ * @param {number | null | undefined} surface
+ * @param {string} piece
+ * @param {number | null | undefined} diameter_mm
+ * @param {string[]} file_names
+ * @param {string[]} file_texts
+ * @returns {string}
+ */
+export function import_design(name, bytes, surface, piece, diameter_mm, file_names, file_texts) {
+    let deferred9_0;
+    let deferred9_1;
+    try {
+        const val6 = +(isLikeNone(surface) ? Number.MAX_SAFE_INTEGER : (surface) >>> 0);
+        const val7 = +(isLikeNone(diameter_mm) ? 0 : diameter_mm);
+        let ptr0, len0, ptr1, len1, ptr2, len2, ptr3, len3, ptr4, len4;
+        try {
+            ptr0 = passStringToWasm0(name, wasm.__wbindgen_malloc, wasm.__wbindgen_realloc);
+            len0 = WASM_VECTOR_LEN;
+            ptr1 = passArray8ToWasm0(bytes, wasm.__wbindgen_malloc);
+            len1 = WASM_VECTOR_LEN;
+            ptr2 = passStringToWasm0(piece, wasm.__wbindgen_malloc, wasm.__wbindgen_realloc);
+            len2 = WASM_VECTOR_LEN;
+            ptr3 = passArrayJsValueToWasm0(file_names, wasm.__wbindgen_malloc);
+            len3 = WASM_VECTOR_LEN;
+            ptr4 = passArrayJsValueToWasm0(file_texts, wasm.__wbindgen_malloc);
+            len4 = WASM_VECTOR_LEN;
+        } catch (e) {
+            if (ptr4) { wasm.__externref_drop_slice(ptr4, len4); wasm.__wbindgen_free(ptr4, len4 * 4, 4); }
+            if (ptr3) { wasm.__externref_drop_slice(ptr3, len3); wasm.__wbindgen_free(ptr3, len3 * 4, 4); }
+            if (ptr2) { wasm.__wbindgen_free(ptr2, len2 * 1, 1); }
+            if (ptr1) { wasm.__wbindgen_free(ptr1, len1 * 1, 1); }
+            if (ptr0) { wasm.__wbindgen_free(ptr0, len0 * 1, 1); }
+            throw e;
+        }
+        const ret = wasm.import_design(ptr0, len0, ptr1, len1, val6, ptr2, len2, !isLikeNone(diameter_mm), val7, ptr3, len3, ptr4, len4);
+        var ptr8 = ret[0];
+        var len8 = ret[1];
+        if (ret[3]) {
+            ptr8 = 0; len8 = 0;
+            throw takeFromExternrefTable0(ret[2]);
+        }
+        deferred9_0 = ptr8;
+        deferred9_1 = len8;
+        return getStringFromWasm0(ptr8, len8);
+    } finally {
+        wasm.__wbindgen_free(deferred9_0, deferred9_1, 1);
+    }
 }
 
 /**
@@ -541,7 +779,9 @@ export function machine_presets() {
 }
 
 /**
- * The NC program of `job`, byte for byte what `spiralcam plan JOB --nc FILE` writes.
+ * The NC program of `job`, byte for byte what `spiralcam plan JOB --nc FILE` writes; for a
+ * program split into child programs (`program.max_program_bytes`), a zip of the main program
+ * (`NAME.nc`) and its children (`NAME-1.nc`, … as the command line names them beside it).
  * @param {any} job
  * @param {Function} progress
  * @returns {Uint8Array}
@@ -584,6 +824,34 @@ export function power_maps(job, size) {
         throw takeFromExternrefTable0(ret[1]);
     }
     return ret[0] === 0 ? undefined : PowerMaps.__wrap(ret[0]);
+}
+
+/**
+ * The offsets a test cut of `job` shows (`params`: the JSON of `spiralcam setup --params`),
+ * as JSON.
+ * @param {any} job
+ * @param {string} params
+ * @returns {string}
+ */
+export function setup_offsets(job, params) {
+    let deferred3_0;
+    let deferred3_1;
+    try {
+        const ptr0 = passStringToWasm0(params, wasm.__wbindgen_malloc, wasm.__wbindgen_realloc);
+        const len0 = WASM_VECTOR_LEN;
+        const ret = wasm.setup_offsets(job, ptr0, len0);
+        var ptr2 = ret[0];
+        var len2 = ret[1];
+        if (ret[3]) {
+            ptr2 = 0; len2 = 0;
+            throw takeFromExternrefTable0(ret[2]);
+        }
+        deferred3_0 = ptr2;
+        deferred3_1 = len2;
+        return getStringFromWasm0(ptr2, len2);
+    } finally {
+        wasm.__wbindgen_free(deferred3_0, deferred3_1, 1);
+    }
 }
 
 /**
@@ -2579,28 +2847,28 @@ function __wbg_get_imports() {
             arg0.writeBuffer(arg1, arg2, getArrayU8FromWasm0(arg3, arg4), arg5, arg6);
         }, arguments); },
         __wbindgen_generic_0000000000000001: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [Externref], shim_idx: 2270, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [Externref], shim_idx: 2368, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
             const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c);
             return ret;
         },
         __wbindgen_generic_0000000000000002: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("GPUDevice")], shim_idx: 236, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56);
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("GPUDevice")], shim_idx: 337, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87);
             return ret;
         },
         __wbindgen_generic_0000000000000003: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("GPUUncapturedErrorEvent")], shim_idx: 240, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__hc37317138617a3f5);
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("GPUUncapturedErrorEvent")], shim_idx: 339, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h9a591c57c7a39bce);
             return ret;
         },
         __wbindgen_generic_0000000000000004: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("any")], shim_idx: 236, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_46);
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("any")], shim_idx: 337, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_57);
             return ret;
         },
         __wbindgen_generic_0000000000000005: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("undefined")], shim_idx: 236, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_47);
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("undefined")], shim_idx: 337, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_58);
             return ret;
         },
         __wbindgen_generic_0000000000000006: function(arg0) {
@@ -2673,8 +2941,8 @@ function __wbg_get_imports() {
     };
 }
 
-function wasm_bindgen__convert__closures_____invoke__hc37317138617a3f5(arg0, arg1, arg2) {
-    wasm.wasm_bindgen__convert__closures_____invoke__hc37317138617a3f5(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h9a591c57c7a39bce(arg0, arg1, arg2) {
+    wasm.wasm_bindgen__convert__closures_____invoke__h9a591c57c7a39bce(arg0, arg1, arg2);
 }
 
 function wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c(arg0, arg1, arg2) {
@@ -2684,22 +2952,22 @@ function wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c(arg0, arg
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_46(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_46(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_57(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_57(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_47(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h11a787f5070f3d56_47(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_58(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_58(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }
@@ -2783,6 +3051,9 @@ const __wbindgen_enum_GpuVertexStepMode = ["vertex", "instance"];
 const AccuracyFinalization = (typeof FinalizationRegistry === 'undefined')
     ? { register: () => {}, unregister: () => {} }
     : new FinalizationRegistry(ptr => wasm.__wbg_accuracy_free(ptr, 1));
+const CorrectedFinalization = (typeof FinalizationRegistry === 'undefined')
+    ? { register: () => {}, unregister: () => {} }
+    : new FinalizationRegistry(ptr => wasm.__wbg_corrected_free(ptr, 1));
 const PlannedFinalization = (typeof FinalizationRegistry === 'undefined')
     ? { register: () => {}, unregister: () => {} }
     : new FinalizationRegistry(ptr => wasm.__wbg_planned_free(ptr, 1));
@@ -3023,10 +3294,27 @@ function passArray32ToWasm0(arg, malloc) {
     return ptr;
 }
 
+function passArray8ToWasm0(arg, malloc) {
+    const ptr = malloc(arg.length * 1, 1) >>> 0;
+    getUint8ArrayMemory0().set(arg, ptr / 1);
+    WASM_VECTOR_LEN = arg.length;
+    return ptr;
+}
+
 function passArrayF32ToWasm0(arg, malloc) {
     const ptr = malloc(arg.length * 4, 4) >>> 0;
     getFloat32ArrayMemory0().set(arg, ptr / 4);
     WASM_VECTOR_LEN = arg.length;
+    return ptr;
+}
+
+function passArrayJsValueToWasm0(array, malloc) {
+    const ptr = malloc(array.length * 4, 4) >>> 0;
+    for (let i = 0; i < array.length; i++) {
+        const add = addToExternrefTable0(array[i]);
+        getDataViewMemory0().setUint32(ptr + 4 * i, add, true);
+    }
+    WASM_VECTOR_LEN = array.length;
     return ptr;
 }
 

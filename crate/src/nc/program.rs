@@ -225,13 +225,18 @@ impl<'a> ProgramWriter<'a> {
     /// left and the `G52` shift); a comment either way.
     pub fn begin_group(&mut self, g: GroupFrame) -> Result<(), NcError> {
         let passes = if g.count == 1 { "pass" } else { "passes" };
-        let mut text = format!(
-            "(group {}: {} {passes} of {} um; stock {} mm before)\n",
-            g.group + 1,
-            g.count,
-            fmt(g.depth_mm * 1e3),
-            fmt(g.stock_before_mm)
-        );
+        // Without `passes` the one pass cuts the design: no group to name.
+        let mut text = if self.spec.passes.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "(group {}: {} {passes} of {} um; stock {} mm before)\n",
+                g.group + 1,
+                g.count,
+                fmt(g.depth_mm * 1e3),
+                fmt(g.stock_before_mm)
+            )
+        };
         if self.spec.loop_kind == LoopKind::Controller {
             let label = 100 + g.group;
             let shift = if self.blocks.conv.z_sign < 0.0 {
@@ -276,7 +281,7 @@ impl<'a> ProgramWriter<'a> {
     /// stock.
     pub fn begin_pass(&mut self, pass: &Pass, f: PassFrame) -> Result<(), NcError> {
         self.lift = f.lift_mm;
-        if self.spec.loop_kind == LoopKind::Unrolled {
+        if self.spec.loop_kind == LoopKind::Unrolled && !self.spec.passes.is_empty() {
             self.main_text(&format!(
                 "(pass: group {}, stock {} mm left after it)\n",
                 pass.group + 1,

@@ -132,7 +132,8 @@ impl Toroid {
         let s = y * y;
         let [p, p1, p2] = self.polynomial(s);
         Ok([
-            self.cy * s / (1.0 + w) + p,
+            // cy·y·y as the conic writes it, so a cylinder is its profile bit for bit.
+            self.cy * y * y / (1.0 + w) + p,
             self.cy * y / w + 2.0 * y * p1,
             self.cy / (q * w) + 2.0 * p1 + 4.0 * s * p2,
         ])

@@ -460,11 +460,11 @@ function showCorrection(m, stops) {
 function topZernike(z) {
   return z
     .map((v, k) => [k + 1, v])
-    .filter(([k]) => k > 3)
+    .filter(([k, v]) => k > 3 && Math.abs(v) >= 5e-5)
     .sort((a, b) => Math.abs(b[1]) - Math.abs(a[1]))
     .slice(0, 3)
     .map(([k, v]) => `Z${k} ${fmt(v, 4)} µm`)
-    .join(', ');
+    .join(', ') || 'none above 0.05 nm';
 }
 
 /** The set-up offsets as rows. */

@@ -1,12 +1,15 @@
 // The page: the job form, planning in a Web Worker (progress, cancel), the 3-D view, the report,
 // the machine dynamics (split verdict, axis checks, 2-D plots) and the downloads; the measured
 // panel (a measured file corrected against the job: residual before and after, the corrected
-// job and its program) and the set-up panel (a test cut turned into offsets). Planning never
+// job and its program), the set-up panel (a test cut turned into offsets) and Open NC… (a
+// program verified against the job: its report and the last pass's deviation map in nm; the
+// program's path is not drawn in the 3-D view). Planning never
 // runs on this thread, so the page stays responsive; a new
 // edit or Cancel terminates the worker and starts a fresh one. The page's state is mirrored on
 // `document.body.dataset.state` ("loading", "planning", "done", "analysing", "analysed",
-// "correcting", "corrected", "error", "cancelled") and `window.spiralcam` (plans started and
-// finished, the report, the accuracy analysis, the correction's report, the backend, what the
+// "correcting", "corrected", "verifying", "verified", "error", "cancelled") and
+// `window.spiralcam` (plans started and finished, the report, the accuracy analysis, the
+// correction's and the verification's reports, the backend, what the
 // last design import read) for the browser tests. "Import design…" is web/import.js.
 
 import init, { Viewer, default_job, colormap_css, colormap_stops, machine_presets, version } from '../pkg/spiralcam_web.js';
@@ -15,7 +18,7 @@ import { bindImport } from './import.js';
 import { drawPlot, prepare } from './plots.js';
 
 const $ = (id) => document.getElementById(id);
-const status = (window.spiralcam = { state: 'loading', backend: null, report: null, analysis: null, correction: null, started: 0, plans: 0, error: null, imported: null });
+const status = (window.spiralcam = { state: 'loading', backend: null, report: null, analysis: null, correction: null, verification: null, started: 0, plans: 0, error: null, imported: null });
 
 function setState(s) {
   status.state = s;
@@ -57,7 +60,8 @@ class PlannerWorker {
   }
 
   /** `kind`: "plan", "analyse", "nc", "csv", "fts", "grid", "correct" (`extra`: the measured
-   * file's name, bytes and options) or "setup" (`extra`: the observations as JSON). */
+   * file's name, bytes and options), "setup" (`extra`: the observations as JSON) or "verify"
+   * (`extra`: the program's name and text, the other files' names and texts). */
   run(kind, job, extra) {
     this.cancel();
     const id = this.nextId++;
@@ -456,6 +460,36 @@ function showCorrection(m, stops) {
   $('map-after-range').textContent = `${fmt(alo, 4)} … ${fmt(ahi, 4)} µm`;
 }
 
+/** The Open NC panel: the verify report's figures and the last pass's deviation map, its
+ * range in nm. */
+function showVerification(m, stops) {
+  const rows = [];
+  if (m) {
+    const r = m.report;
+    const nm = (v) => `${fmt(1000 * v, 1)} nm`;
+    const at = (a) => (a ? ` at ρ ${fmt(a.rho_mm, 4)} mm, θ ${fmt(a.theta_deg, 2)}° (${a.file}:${a.line})` : '');
+    const d = r.deviation_um;
+    rows.push(
+      ['Program', `${fmt(r.blocks, 0)} blocks, ${fmt(r.cutting_points, 0)} cutting points; units ${r.program.units}, C ${r.program.c}, dialect ${r.program.dialect ?? 'not clear'}`],
+      ['Passes', r.passes.map((p) => `${fmt(p.points, 0)} points, stock ${fmt(p.stock_um, 4)} µm`).join('; ') || 'none'],
+      ['Deviation, last pass', `min ${nm(d.min)}${at(d.min_at)}, max ${nm(d.max)}${at(d.max_at)}, RMS ${nm(d.rms)}`],
+      ['Linearization (last pass)', r.linearization ? `PV ${fmt(r.linearization.pv_um, 4)} µm` : 'not computed'],
+      ['Predicted form (last pass)', r.predicted_form ? `PV ${fmt(r.predicted_form.pv_um, 4)} µm, RMS ${fmt(r.predicted_form.rms_um, 4)} µm` : 'not computed'],
+      ['Cycle time', `${duration(r.timing.cycle_time_s)} (rapids left out)`],
+      ['Spindle', r.timing.spindle_rpm ? `${fmt(r.timing.spindle_rpm.min, 1)} … ${fmt(r.timing.spindle_rpm.max, 1)} rpm` : '–'],
+      ['Collisions', r.collisions.count ? `${r.collisions.count} moves, deepest ${fmt(r.collisions.deepest_um, 3)} µm (first at line ${r.collisions.listed[0].at.line})` : 'none'],
+    );
+    for (const l of r.axis_limits) rows.push([l.field, `${fmt(l.largest, 3)} (limit ${fmt(l.limit, 3)}), ${fmt(l.moves_beyond, 0)} moves beyond`]);
+    for (const w of r.warnings) rows.push(['Warning', w]);
+    for (const n of r.notes) rows.push(['Note', n]);
+  }
+  $('verify-table').replaceChildren(...keyRows(rows));
+  $('verify-maps').hidden = !m;
+  if (!m) return;
+  const [lo, hi] = drawMap($('map-deviation'), m.deviation, m.size, stops);
+  $('map-deviation-range').textContent = `${fmt(1000 * lo, 1)} … ${fmt(1000 * hi, 1)} nm`;
+}
+
 /** The three largest Fringe Zernike terms, e.g. "Z5 0.4 µm, Z10 −0.25 µm, Z9 0.01 µm". */
 function topZernike(z) {
   return z
@@ -653,8 +687,10 @@ async function main() {
     progress.value = done;
     const writing = { nc: 'writing NC', csv: 'writing CSV', fts: 'writing the FTS table', grid: 'writing the FTS grid' }[kind];
     const what = stage === 'planning' && writing ? writing : stage;
-    const items = { 'sampling bands': 'circles', 'concave zones': 'sections and zones', 'FTS grid': 'passes (at most)' }[stage] ?? 'points';
-    progressText.textContent = `${what}: ${Math.round((100 * done) / Math.max(total, 1))} % (${fmt(done, 0)} / ${fmt(total, 0)} ${items})`;
+    const items = { 'sampling bands': 'circles', 'concave zones': 'sections and zones', 'FTS grid': 'passes (at most)', 'reading the program': 'moves', verifying: 'moves' }[stage] ?? 'points';
+    progressText.textContent = total > 0
+      ? `${what}: ${Math.round((100 * done) / total)} % (${fmt(done, 0)} / ${fmt(total, 0)} ${items})`
+      : `${what}: ${fmt(done, 0)} ${items}`;
   });
 
   let planned = null;
@@ -791,6 +827,36 @@ async function main() {
       busy(false);
     }
   };
+  $('nc-file').addEventListener('change', async () => {
+    const files = [...$('nc-file').files];
+    if (!files.length) return;
+    generation++;
+    setState('verifying');
+    busy(true);
+    $('verify-error').textContent = '';
+    try {
+      const started = performance.now();
+      // The first file chosen is the main program; the others are where its children are
+      // looked for, by name.
+      const texts = await Promise.all(files.map((f) => f.text()));
+      const extra = { name: files[0].name, text: texts[0], names: files.slice(1).map((f) => f.name), texts: texts.slice(1) };
+      const m = await worker.run('verify', form.value(), extra);
+      showVerification(m, stops);
+      $('plan-time').textContent = `verified in ${fmt((performance.now() - started) / 1000, 2)} s`;
+      status.verification = m.report;
+      setState('verified');
+    } catch (e) {
+      showVerification(null, stops);
+      if (!e.cancelled) {
+        $('verify-error').textContent = e.message;
+        status.error = e.message;
+        setState('error');
+      } else setState('cancelled');
+    } finally {
+      busy(false);
+      $('nc-file').value = '';
+    }
+  });
   $('measured-file').addEventListener('change', runCorrection);
   $('correct').addEventListener('click', runCorrection);
   $('download-corrected').addEventListener('click', () => {

@@ -1,10 +1,10 @@
 // The planning worker: loads the wasm module once and answers {id, kind, job} messages with
 // progress messages and one result ({kind: "planned" | "analysed" | "corrected" | "offsets" |
-// "bytes"}) or
+// "verified" | "bytes"}) or
 // {kind: "error", message}.
 // Typed arrays are transferred, not copied.
 
-import init, { analyse, plan, nc_program, csv_table, fts_table, fts_grid, power_maps, correct, setup_offsets } from '../pkg/spiralcam_web.js';
+import init, { analyse, plan, nc_program, csv_table, fts_table, fts_grid, power_maps, correct, setup_offsets, verify_program } from '../pkg/spiralcam_web.js';
 
 /** Samples per side of the power maps. */
 const MAP_SIZE = 161;
@@ -67,6 +67,18 @@ self.onmessage = async (e) => {
       };
       c.free();
       self.postMessage(m, [m.before.buffer, m.after.buffer]);
+    } else if (kind === 'verify') {
+      const v = verify_program(job, extra.name, extra.text, extra.names, extra.texts, progress);
+      const m = {
+        id,
+        kind: 'verified',
+        report: JSON.parse(v.report),
+        size: v.size,
+        deviation: v.deviation_um,
+        trace: v.trace,
+      };
+      v.free();
+      self.postMessage(m, [m.deviation.buffer, m.trace.buffer]);
     } else if (kind === 'setup') {
       self.postMessage({ id, kind: 'offsets', offsets: JSON.parse(setup_offsets(job, extra)) });
     } else {

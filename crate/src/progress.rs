@@ -21,6 +21,10 @@ pub enum Stage {
     Zones,
     /// The accuracy analysis reading the path: items are points.
     Analysis,
+    /// An NC program read through once to count its moves and passes: items are moves.
+    Scan,
+    /// An NC program verified against the design: items are moves.
+    Verify,
 }
 
 impl Stage {
@@ -33,6 +37,8 @@ impl Stage {
             Stage::FtsGrid => "FTS grid",
             Stage::Zones => "concave zones",
             Stage::Analysis => "analysing",
+            Stage::Scan => "reading the program",
+            Stage::Verify => "verifying",
         }
     }
 }

@@ -58,7 +58,9 @@ fn read_job(job: JsValue, progress: &js_sys::Function) -> Result<Planner, JsErro
 
 /// Calls `progress(done, total, stage)` in JavaScript (`stage` as `spiralcam::progress::Stage::label` names it);
 /// a thrown exception cancels the plan.
-fn reporter(progress: &js_sys::Function) -> impl FnMut(Progress) -> ControlFlow<()> + '_ {
+pub(crate) fn reporter(
+    progress: &js_sys::Function,
+) -> impl FnMut(Progress) -> ControlFlow<()> + '_ {
     move |p: Progress| {
         let done = JsValue::from_f64(p.done as f64);
         let total = JsValue::from_f64(p.total as f64);

@@ -4,7 +4,8 @@
 //! (`viewer`, WebGPU first, WebGL2 as the fallback) with its orbit [`camera`]. [`colormap`] is
 //! the one height colour scale shared by the shader and the page's legend; [`bundle`] zips a
 //! program and its child programs into one download; [`design`] is the page's import of a
-//! designer's file. `api` and `viewer` exist only in the wasm32 build.
+//! designer's file; `verify` is the page's Open NC… (a program verified against the job).
+//! `api`, `correct`, `verify` and `viewer` exist only in the wasm32 build.
 
 pub mod bundle;
 pub mod camera;
@@ -15,5 +16,7 @@ pub mod design;
 pub mod api;
 #[cfg(target_arch = "wasm32")]
 pub mod correct;
+#[cfg(target_arch = "wasm32")]
+pub mod verify;
 #[cfg(target_arch = "wasm32")]
 pub mod viewer;

@@ -17,7 +17,13 @@
 //! - [`correction`]: the whole correction: design − gain × residual as a job, and the residual
 //!   predicted after the re-cut;
 //! - [`setup`]: the set-up errors a test cut shows (tool height, X offset, radius) turned into
-//!   offsets.
+//!   offsets;
+//!
+//! and a program from any system read back and checked against the design (issue 14):
+//!
+//! - [`verify`]: the deviation of every cutting point from the one-way compensated tip, per
+//!   pass, with the accuracy analyses of the last pass, feeds and times, collisions and the
+//!   machine's limits (`spiralcam verify`, the page's Open NC…).
 //!
 //! This module is the accuracy report ([`Analysis`]): in one pass over the path the
 //! linearization error, the predicted form, the tool angles the surface asks for
@@ -44,6 +50,7 @@ pub mod predicted_form;
 pub mod registration;
 pub mod residual;
 pub mod setup;
+pub mod verify;
 pub mod zernike_fit;
 
 use crate::analysis::linearization::{LinearizationCheck, LinearizationReport};

@@ -84,7 +84,7 @@ pub fn run(words: &[String]) -> Result<(), Failure> {
 }
 
 /// Writes the defined samples of `map` as `x_mm,y_mm,<value>` rows, not yet renamed.
-fn write_map(path: &Path, map: &Raster, value: &str) -> Result<OutputFile, Failure> {
+pub fn write_map(path: &Path, map: &Raster, value: &str) -> Result<OutputFile, Failure> {
     let mut out = OutputFile::create(path)?;
     let mut write = || -> std::io::Result<()> {
         writeln!(out.writer, "x_mm,y_mm,{value}")?;

@@ -39,6 +39,7 @@ fn draw(p: Progress) {
         Stage::Bands => "circles",
         Stage::Zones => "sections and zones",
         Stage::FtsGrid => "passes (at most)",
+        Stage::Scan | Stage::Verify => "moves",
         _ => "points",
     };
     eprint!(

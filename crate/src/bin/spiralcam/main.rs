@@ -11,6 +11,7 @@
 //!                   [--rotate DEG] [--mirror x|y] [--out CORRECTED.json] [--report FILE]
 //!                   [--maps PREFIX]
 //! spiralcam setup JOB.json --params SETUP.json [--report FILE]
+//! spiralcam verify JOB.json --nc PROGRAM [--report FILE] [--maps PREFIX] [--accept CODES]
 //! ```
 //!
 //! Every job is admitted before work ([`spiralcam::plan::admission`]): its points, the size of
@@ -31,6 +32,7 @@ mod import;
 mod plan;
 mod sag;
 mod setup;
+mod verify;
 
 use spiralcam::job::Job;
 use spiralcam::surface::data_file::MAX_DATA_BYTES;
@@ -48,6 +50,7 @@ const USAGE: &str = "usage:
                     [--rotate DEG] [--mirror x|y] [--out CORRECTED.json] [--report FILE]
                     [--maps PREFIX]
   spiralcam setup JOB.json --params SETUP.json [--report FILE]
+  spiralcam verify JOB.json --nc PROGRAM [--report FILE] [--maps PREFIX] [--accept CODES]
   spiralcam help [COMMAND] | COMMAND --help | --version";
 
 /// The most a job file may weigh, bytes: it may carry its data files as text.
@@ -87,9 +90,9 @@ fn main() -> ExitCode {
     let command = args.first().map(String::as_str);
     let rest = args.get(1..).unwrap_or(&[]);
     let result = match command {
-        Some("plan" | "analyse" | "sag" | "import" | "export-grid" | "correct" | "setup")
-            if args::wants_help(rest) =>
-        {
+        Some(
+            "plan" | "analyse" | "sag" | "import" | "export-grid" | "correct" | "setup" | "verify",
+        ) if args::wants_help(rest) => {
             help(command);
             Ok(())
         }
@@ -100,6 +103,7 @@ fn main() -> ExitCode {
         Some("export-grid") => export_grid::run(rest),
         Some("correct") => correct::run(rest),
         Some("setup") => setup::run(rest),
+        Some("verify") => verify::run(rest),
         Some("help") => {
             help(rest.first().map(String::as_str));
             Ok(())
@@ -109,14 +113,15 @@ fn main() -> ExitCode {
             Ok(())
         }
         None => Err(Failure::Usage(
-            "expected a command: plan, analyse, sag, import, export-grid, correct or setup".into(),
+            "expected a command: plan, analyse, sag, import, export-grid, correct, setup or verify"
+                .into(),
         )),
         Some("--version" | "-V") => {
             println!("spiralcam {}", env!("CARGO_PKG_VERSION"));
             Ok(())
         }
         Some(other) => Err(Failure::Usage(format!(
-            "unknown command {other}: expected a command: plan, analyse, sag, import, export-grid, correct or setup"
+            "unknown command {other}: expected a command: plan, analyse, sag, import, export-grid, correct, setup or verify"
         ))),
     };
     match result {
@@ -146,6 +151,7 @@ fn help(command: Option<&str>) {
         Some("export-grid") => println!("{}", export_grid::HELP),
         Some("correct") => println!("{}", correct::HELP),
         Some("setup") => println!("{}", setup::HELP),
+        Some("verify") => println!("{}", verify::HELP),
         _ => println!("{USAGE}"),
     }
 }

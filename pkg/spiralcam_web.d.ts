@@ -138,6 +138,31 @@ export class PowerMaps {
 }
 
 /**
+ * A program verified.
+ */
+export class Verified {
+    private constructor();
+    free(): void;
+    [Symbol.dispose](): void;
+    /**
+     * The last pass's deviation, µm, row by row from −y to +y (NaN where no point fell).
+     */
+    readonly deviation_um: Float32Array;
+    /**
+     * The report as JSON.
+     */
+    readonly report: string;
+    /**
+     * Samples per side of the map.
+     */
+    readonly size: number;
+    /**
+     * The trace: x, y, z (mm) and deviation (µm) of every k-th cutting point, flat.
+     */
+    readonly trace: Float32Array;
+}
+
+/**
  * The 3-D view of a surface and its tool path on a canvas.
  */
 export class Viewer {
@@ -294,6 +319,13 @@ export function power_maps(job: any, size: number): PowerMaps | undefined;
 export function setup_offsets(job: any, params: string): string;
 
 /**
+ * Verifies the program `name` (`text`) against `job`; `names` and `texts` are the other files
+ * chosen with it, where its child programs are looked for. `progress(done, total, stage)`
+ * sees the moves read and may cancel by throwing.
+ */
+export function verify_program(job: any, name: string, text: string, names: string[], texts: string[], progress: Function): Verified;
+
+/**
  * The crate version, shown on the page.
  */
 export function version(): string;
@@ -306,6 +338,7 @@ export interface InitOutput {
     readonly __wbg_corrected_free: (a: number, b: number) => void;
     readonly __wbg_planned_free: (a: number, b: number) => void;
     readonly __wbg_powermaps_free: (a: number, b: number) => void;
+    readonly __wbg_verified_free: (a: number, b: number) => void;
     readonly __wbg_viewer_free: (a: number, b: number) => void;
     readonly accuracy_clearance_deg: (a: number) => [number, number];
     readonly accuracy_form_error_um: (a: number) => [number, number];
@@ -348,6 +381,11 @@ export interface InitOutput {
     readonly powermaps_size: (a: number) => number;
     readonly powermaps_step_mm: (a: number) => number;
     readonly setup_offsets: (a: any, b: number, c: number) => [number, number, number, number];
+    readonly verified_deviation_um: (a: number) => [number, number];
+    readonly verified_report: (a: number) => [number, number];
+    readonly verified_size: (a: number) => number;
+    readonly verified_trace: (a: number) => [number, number];
+    readonly verify_program: (a: any, b: number, c: number, d: number, e: number, f: number, g: number, h: number, i: number, j: any) => [number, number, number];
     readonly version: () => [number, number];
     readonly viewer_backend: (a: number) => [number, number];
     readonly viewer_create: (a: any) => any;
@@ -361,8 +399,8 @@ export interface InitOutput {
     readonly viewer_z_exaggeration: (a: number) => number;
     readonly viewer_zoom: (a: number, b: number) => void;
     readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_57: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_58: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_62: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_63: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h6a9a4c771fb11aad: (a: number, b: number, c: any, d: any) => void;
     readonly wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h9a591c57c7a39bce: (a: number, b: number, c: any) => void;

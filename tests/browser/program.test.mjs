@@ -2,7 +2,8 @@
 // with passes and a size limit opened from a file shows its passes in the report and the view,
 // and its program downloads as one zip whose files equal, byte for byte and in order, the main
 // program and the child programs the command-line tool writes; a measured error map (a known
-// astigmatism with piston and tilt) is registered and its residual reported and drawn.
+// astigmatism with piston and tilt) is registered and its residual reported and drawn; Open NC
+// verifies the command line's program with its children against the job (issue 14).
 
 import { after, before, describe, test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -63,6 +64,8 @@ async function openJob(page, job) {
 }
 
 let server;
+/** Where the first test's command line wrote the program and its children. */
+let cliDir;
 before(async () => {
   server = await startServer();
 });
@@ -112,6 +115,20 @@ describe('program and measured panels', () => {
     for (const f of files) {
       assert.ok(f.bytes.equals(readFileSync(join(dir, f.name))), `${f.name} differs from the command line`);
     }
+    cliDir = dir;
+    assert.deepEqual(errors, []);
+  });
+
+  test('Open NC verifies the command-line program and its children against the job', async () => {
+    const names = ['passes-zip.nc', ...readdirSync(cliDir).filter((f) => /^passes-zip-\d+\.nc$/.test(f)).sort()];
+    await page.setInputFiles('#nc-file', names.map((n) => join(cliDir, n)));
+    await waitForState(page, ['verified']);
+    const v = await page.evaluate(() => window.spiralcam.verification);
+    assert.equal(v.passes.length, 3);
+    // Each pass leaves the stock after it: 7, 2 and 0 µm, to within the written digits.
+    [7, 2, 0].forEach((stock, k) => assert.ok(Math.abs(v.passes[k].stock_um - stock) < 1e-3, `pass ${k + 1}: ${v.passes[k].stock_um} µm`));
+    assert.ok(Math.max(Math.abs(v.deviation_um.min), Math.abs(v.deviation_um.max)) < 1e-3, JSON.stringify(v.deviation_um));
+    assert.ok(await page.isVisible('#verify-maps'));
     assert.deepEqual(errors, []);
   });
 

@@ -17,7 +17,7 @@ mod common;
 
 use common::half_unit;
 use spiralcam::analysis::verify::{Verification, VerifyError, VerifySettings, verify};
-use spiralcam::job::Job;
+use spiralcam::job::{Dialect, Job, Sampling};
 use spiralcam::nc::program::ChildFiles;
 use spiralcam::nc::reader::{Program, Reader, ReaderOptions, texts_beside};
 use spiralcam::plan::{Planner, Sinks};
@@ -454,4 +454,47 @@ fn bad_programs_are_refused_with_a_clear_message() {
         e.contains("part.diameter_mm") && e.contains("another part size"),
         "{e}"
     );
+}
+
+/// A split program (the slide's Z and the servo's word, `Y` in ISO and `W` in the Moore style)
+/// verifies against its own job: the verifier adds the servo's share to Z, and Z + servo equals
+/// the single-channel Z digit for digit, so the deviation is within the written tolerance.
+#[test]
+fn a_split_program_verifies_against_its_own_job() {
+    for dialect in [Dialect::Iso, Dialect::Moore] {
+        let mut job = common::coarse_grid_fts();
+        job.strategy.feed_mm_per_rev = 0.1;
+        job.strategy.sampling = Sampling::ConstantAngle {
+            points_per_rev: 128,
+        };
+        job.output.dialect = dialect;
+        let planner = Planner::new(&job).expect("planner");
+        let mut nc = Vec::new();
+        planner
+            .run_with_dynamics(
+                Sinks {
+                    nc: Some(&mut nc),
+                    ..Default::default()
+                },
+                &mut |_| ControlFlow::Continue(()),
+            )
+            .expect("plan");
+        let text = String::from_utf8(nc).expect("ascii");
+        let word = if dialect == Dialect::Iso { " Y" } else { " W" };
+        assert!(text.contains(word), "{dialect:?}: the servo's word");
+        let v = verify_text(&job, "split.nc", &text, &[]).expect("verify");
+        // The sine grid's largest slope: 2π·a·√(1/λx² + 1/λy²), a = 2 µm, λ = 1 mm.
+        let slope = std::f64::consts::TAU * 0.002 * 2f64.sqrt();
+        let tol = written_tolerance_um(&job, slope);
+        let d = &v.deviation_um;
+        assert!(
+            d.min.abs() <= tol && d.max.abs() <= tol,
+            "{dialect:?}: {d:?} (tolerance {tol} µm)"
+        );
+        assert_eq!(
+            v.cutting_points,
+            planner.points().count() as u64 - 1,
+            "{dialect:?}"
+        );
+    }
 }

@@ -3,51 +3,21 @@
 //! calls replaced by them, give back the single file line for line), in every dialect and both
 //! loop kinds; and the section's bad input is refused naming the field.
 
+mod common;
+
+use common::{ChildBuffers, passes_job_json};
 use spiralcam::job::Job;
 use spiralcam::nc::program::ChildFiles;
 use spiralcam::plan::{Planner, Sinks};
 use spiralcam::report::Report;
-use std::io::Write;
 use std::ops::ControlFlow;
 
-/// Child programs kept in memory, in the order they are opened.
-#[derive(Default)]
-struct Children(Vec<(usize, String, Vec<u8>)>);
-
-impl ChildFiles for Children {
-    fn child(&mut self, number: usize, name: &str) -> std::io::Result<&mut dyn Write> {
-        if number > self.0.len() {
-            self.0.push((number, name.to_string(), Vec::new()));
-        }
-        Ok(&mut self.0[number - 1].2)
-    }
-}
-
-/// A small sinusoid job in `dialect` with three passes in two groups.
+/// The test job with `limit`.
 fn job_json(dialect: &str, loop_kind: &str, limit: Option<u64>) -> String {
-    let limit = limit.map_or(String::new(), |b| format!(r#", "max_program_bytes": {b}"#));
-    format!(
-        r#"{{
-  "name": "Children",
-  "part": {{ "diameter_mm": 1.2 }},
-  "surface": {{ "type": "sinusoid", "amplitude_mm": 0.002, "wavelength_x_mm": 0.5,
-               "wavelength_y_mm": 0.4 }},
-  "tool": {{ "nose_radius_mm": 0.1 }},
-  "machine": {{ "spindle_rpm": 300.0 }},
-  "strategy": {{ "feed_mm_per_rev": 0.05,
-                 "sampling": {{ "type": "constant_angle", "points_per_rev": 36 }} }},
-  "output": {{ "dialect": "{dialect}" }},
-  "program": {{
-    "tool": "T0303", "safe_z_mm": 10, "retract_height_mm": 1,
-    "approach": [ {{ "height_mm": 0.5, "feed_mm_per_min": 200 }} ],
-    "passes": [ {{ "count": 2, "depth_of_cut_um": 5 }}, {{ "count": 1, "depth_of_cut_um": 1 }} ],
-    "loop": "{loop_kind}"{limit}
-  }}
-}}"#
-    )
+    passes_job_json("Children", dialect, loop_kind, limit)
 }
 
-fn plan(json: &str, children: Option<&mut Children>) -> (String, Report) {
+fn plan(json: &str, children: Option<&mut ChildBuffers>) -> (String, Report) {
     let job = Job::from_json(json).expect("job");
     let planner = Planner::new(&job).expect("planner");
     let mut nc = Vec::new();
@@ -65,7 +35,7 @@ fn plan(json: &str, children: Option<&mut Children>) -> (String, Report) {
 }
 
 /// The child number a line calls, if it is a call.
-fn called(line: &str, children: &Children) -> Option<usize> {
+fn called(line: &str, children: &ChildBuffers) -> Option<usize> {
     if let Some(n) = line.strip_prefix("M98 P") {
         return Some(n.trim().parse().expect("M98 P number"));
     }
@@ -73,9 +43,9 @@ fn called(line: &str, children: &Children) -> Option<usize> {
     let c = children
         .0
         .iter()
-        .find(|(_, file, _)| file.strip_suffix(".ngc") == Some(name))
+        .position(|(file, _)| file.strip_suffix(".ngc") == Some(name))
         .unwrap_or_else(|| panic!("no child {name}"));
-    Some(c.0)
+    Some(c + 1)
 }
 
 /// A child's body: its lines without the first (`O1`, `o<…> sub`) and the last (`M99`,
@@ -94,7 +64,7 @@ fn body(text: &str) -> Vec<&str> {
 fn splits_into_children_and_back(dialect: &str, loop_kind: &str) {
     let (single, single_report) = plan(&job_json(dialect, loop_kind, None), None);
     let limit = single.len() as u64 / 5;
-    let mut children = Children::default();
+    let mut children = ChildBuffers::default();
     let (main, report) = plan(
         &job_json(dialect, loop_kind, Some(limit)),
         Some(&mut children),
@@ -106,8 +76,7 @@ fn splits_into_children_and_back(dialect: &str, loop_kind: &str) {
         children.0.len()
     );
     assert_eq!(program.children.len(), children.0.len());
-    for (i, (number, name, text)) in children.0.iter().enumerate() {
-        assert_eq!(*number, i + 1, "children numbered in the order written");
+    for (i, (name, text)) in children.0.iter().enumerate() {
         assert!(
             text.len() as u64 <= limit,
             "{name}: {} bytes > {limit}",
@@ -126,7 +95,7 @@ fn splits_into_children_and_back(dialect: &str, loop_kind: &str) {
         match called(line, &children) {
             Some(n) => {
                 calls.push(n);
-                let text = std::str::from_utf8(&children.0[n - 1].2).expect("ascii");
+                let text = std::str::from_utf8(&children.0[n - 1].1).expect("ascii");
                 child_starts.push(rebuilt.len());
                 rebuilt.extend(body(text).into_iter().map(str::to_string));
             }

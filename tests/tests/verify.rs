@@ -15,15 +15,13 @@
 
 mod common;
 
-use common::half_unit;
+use common::{ChildBuffers, half_unit, passes_job_json};
 use spiralcam::analysis::verify::{Verification, VerifyError, VerifySettings, verify};
 use spiralcam::job::{Dialect, Job, Sampling};
-use spiralcam::nc::program::ChildFiles;
 use spiralcam::nc::reader::{Program, Reader, ReaderOptions, texts_beside};
 use spiralcam::plan::{Planner, Sinks};
 use spiralcam::progress::ignore;
 use spiralcam::tool::ToolPath;
-use std::io::Write;
 use std::ops::ControlFlow;
 
 /// Verifies `text` (named `name`, children in `files`) against `job`.
@@ -43,59 +41,25 @@ fn verify_text(
     verify(&path, &mut open, &VerifySettings::default(), &mut ignore)
 }
 
-/// Child programs kept in memory.
-#[derive(Default)]
-struct Children(Vec<(String, Vec<u8>)>);
-
-impl ChildFiles for Children {
-    fn child(&mut self, number: usize, name: &str) -> std::io::Result<&mut dyn Write> {
-        if number > self.0.len() {
-            self.0.push((name.to_string(), Vec::new()));
-        }
-        Ok(&mut self.0[number - 1].1)
-    }
+/// The child programs' texts.
+fn texts(children: ChildBuffers) -> Vec<(String, String)> {
+    children
+        .0
+        .into_iter()
+        .map(|(n, t)| (n, String::from_utf8(t).expect("ascii")))
+        .collect()
 }
 
-impl Children {
-    fn texts(self) -> Vec<(String, String)> {
-        self.0
-            .into_iter()
-            .map(|(n, t)| (n, String::from_utf8(t).expect("ascii")))
-            .collect()
-    }
-}
-
-/// A small sinusoid job in `dialect` with three passes in two groups (stock 11 µm: 6, 1, 0
-/// left after them).
+/// The shared test job with three passes in two groups (stock 11 µm: 6, 1, 0 left after them).
 fn program_job(dialect: &str, loop_kind: &str, limit: Option<u64>) -> Job {
-    let limit = limit.map_or(String::new(), |b| format!(r#", "max_program_bytes": {b}"#));
-    Job::from_json(&format!(
-        r#"{{
-  "name": "Verified",
-  "part": {{ "diameter_mm": 1.2 }},
-  "surface": {{ "type": "sinusoid", "amplitude_mm": 0.002, "wavelength_x_mm": 0.5,
-               "wavelength_y_mm": 0.4 }},
-  "tool": {{ "nose_radius_mm": 0.1 }},
-  "machine": {{ "spindle_rpm": 300.0 }},
-  "strategy": {{ "feed_mm_per_rev": 0.05,
-                 "sampling": {{ "type": "constant_angle", "points_per_rev": 36 }} }},
-  "output": {{ "dialect": "{dialect}" }},
-  "program": {{
-    "tool": "T0303", "safe_z_mm": 10, "retract_height_mm": 1,
-    "approach": [ {{ "height_mm": 0.5, "feed_mm_per_min": 200 }} ],
-    "passes": [ {{ "count": 2, "depth_of_cut_um": 5 }}, {{ "count": 1, "depth_of_cut_um": 1 }} ],
-    "loop": "{loop_kind}"{limit}
-  }}
-}}"#
-    ))
-    .expect("job")
+    Job::from_json(&passes_job_json("Verified", dialect, loop_kind, limit)).expect("job")
 }
 
 /// The program of `job`, its children, and the number of path points.
 fn write_program(job: &Job) -> (String, Vec<(String, String)>, u64) {
     let planner = Planner::new(job).expect("planner");
     let mut nc = Vec::new();
-    let mut children = Children::default();
+    let mut children = ChildBuffers::default();
     planner
         .run(
             Sinks {
@@ -109,7 +73,7 @@ fn write_program(job: &Job) -> (String, Vec<(String, String)>, u64) {
     let points = planner.points().count() as u64;
     (
         String::from_utf8(nc).expect("ascii"),
-        children.texts(),
+        texts(children),
         points,
     )
 }

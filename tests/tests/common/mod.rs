@@ -639,3 +639,43 @@ pub fn small_job(name: &str, surface: &str, diameter_mm: f64) -> String {
             "strategy":{{"feed_mm_per_rev":0.15,"sampling":{{"type":"constant_angle","points_per_rev":24}}}}}}"#
     )
 }
+
+/// A small sinusoid job named `name` in `dialect` with a `program` section: three passes in two
+/// groups (stock 11 µm; 6, 1 and 0 µm left after them), `loop_kind`, and `max_program_bytes`
+/// when `limit` is given.
+pub fn passes_job_json(name: &str, dialect: &str, loop_kind: &str, limit: Option<u64>) -> String {
+    let limit = limit.map_or(String::new(), |b| format!(r#", "max_program_bytes": {b}"#));
+    format!(
+        r#"{{
+  "name": "{name}",
+  "part": {{ "diameter_mm": 1.2 }},
+  "surface": {{ "type": "sinusoid", "amplitude_mm": 0.002, "wavelength_x_mm": 0.5,
+               "wavelength_y_mm": 0.4 }},
+  "tool": {{ "nose_radius_mm": 0.1 }},
+  "machine": {{ "spindle_rpm": 300.0 }},
+  "strategy": {{ "feed_mm_per_rev": 0.05,
+                 "sampling": {{ "type": "constant_angle", "points_per_rev": 36 }} }},
+  "output": {{ "dialect": "{dialect}" }},
+  "program": {{
+    "tool": "T0303", "safe_z_mm": 10, "retract_height_mm": 1,
+    "approach": [ {{ "height_mm": 0.5, "feed_mm_per_min": 200 }} ],
+    "passes": [ {{ "count": 2, "depth_of_cut_um": 5 }}, {{ "count": 1, "depth_of_cut_um": 1 }} ],
+    "loop": "{loop_kind}"{limit}
+  }}
+}}"#
+    )
+}
+
+/// Child programs kept in memory as a program writes them: (file name, bytes), child `n` at
+/// index `n − 1`.
+#[derive(Default)]
+pub struct ChildBuffers(pub Vec<(String, Vec<u8>)>);
+
+impl spiralcam::nc::program::ChildFiles for ChildBuffers {
+    fn child(&mut self, number: usize, name: &str) -> std::io::Result<&mut dyn std::io::Write> {
+        if number > self.0.len() {
+            self.0.push((name.to_string(), Vec::new()));
+        }
+        Ok(&mut self.0[number - 1].1)
+    }
+}

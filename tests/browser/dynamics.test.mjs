@@ -111,13 +111,13 @@ for (const backend of ['WebGPU', 'WebGL2']) {
       assert.deepEqual(errors, []);
     });
 
-    test('the NC program with W and the servo table equal the command line byte for byte', async () => {
+    test('the NC program with the servo word (Y in ISO) and the servo table equal the command line byte for byte', async () => {
       const { job, path } = await savedJob();
       assert.deepEqual(job.strategy.split, { type: 'auto' });
       const cli = planWithCli(path, { fts: true });
       const nc = await download(page, '#download-nc');
       assert.equal(nc.name, 'lens-array-paper004.ngc');
-      assert.match(nc.bytes.toString(), servoWord('W'));
+      assert.match(nc.bytes.toString(), servoWord('Y'));
       assert.ok(nc.bytes.equals(cli.nc), 'NC differs from the command line');
       const fts = await download(page, '#download-fts');
       assert.equal(fts.name, 'lens-array-paper004-fts.csv');
@@ -127,7 +127,7 @@ for (const backend of ['WebGPU', 'WebGL2']) {
       await replan(page, () => page.selectOption('[data-field="output.fts_word"]', 'U'));
       const u = (await download(page, '#download-nc')).bytes.toString();
       assert.match(u, servoWord('U'));
-      assert.doesNotMatch(u, servoWord('W'));
+      assert.doesNotMatch(u, servoWord('Y'));
       await replan(page, () => page.selectOption('[data-field="output.fts_word"]', ''));
     });
 

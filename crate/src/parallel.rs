@@ -5,10 +5,11 @@
 /// Threads for parallel work: every core natively, one in the browser.
 pub fn workers() -> usize {
     if cfg!(target_arch = "wasm32") {
-        1
-    } else {
-        std::thread::available_parallelism().map_or(1, |n| n.get())
+        return 1;
     }
+    // Asked once: the standard library reads the cgroup's quota files each time.
+    static WORKERS: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
+    *WORKERS.get_or_init(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
 }
 
 /// Fills `out` by `fill(first, chunk)` on [`workers`] threads, each given a contiguous chunk

@@ -10,6 +10,9 @@
 use crate::parallel::{fill_chunks, workers};
 use nalgebra::{DMatrix, DVector};
 
+/// The least work (rows × k²) summed on several threads.
+const MIN_PARALLEL_WORK: usize = 1 << 16;
+
 /// Relative threshold of the singular values kept by the fallback solve.
 pub const SINGULAR: f64 = 1e-12;
 
@@ -30,7 +33,14 @@ impl NormalEquations {
         k: usize,
         row: impl Fn(usize, &mut [f64], &mut f64) -> Result<(), E> + Sync,
     ) -> Result<Self, E> {
-        let mut parts = vec![(vec![0.0; k * k], vec![0.0; k]); workers().max(1)];
+        // Small sums (a local fit of a few points, called per grid node from threads already)
+        // are done here: a thread costs more than they do.
+        let threads = if count * k * k < MIN_PARALLEL_WORK {
+            1
+        } else {
+            workers().max(1)
+        };
+        let mut parts = vec![(vec![0.0; k * k], vec![0.0; k]); threads];
         let per = count.div_ceil(parts.len()).max(1);
         fill_chunks(&mut parts, |first, out| {
             let mut a = vec![0.0; k];

@@ -223,10 +223,13 @@ impl Surface for Asphere {
         }
         let mut slope = (self.c * t / q.sqrt()).abs();
         let mut curvature = self.c.max(self.c / (q * q.sqrt()));
+        // t^(n−2) for n = 4, 6, …: t², t⁴, …
+        let mut t_n2 = t * t;
         for (i, a) in self.a.iter().enumerate() {
             let n = (2 * i + 4) as f64;
-            slope += n * a.abs() * t.powf(n - 1.0);
-            curvature += n * (n - 1.0) * a.abs() * t.powf(n - 2.0);
+            slope += n * a.abs() * t_n2 * t;
+            curvature += n * (n - 1.0) * a.abs() * t_n2;
+            t_n2 *= t * t;
         }
         // Rounding: a relative margin far above the few operations' error.
         let b = SectionBounds {

@@ -3,7 +3,7 @@
 //! θ, and whether every slope kink there is a ridge (the slope drops across it). The one-way
 //! compensation ([`crate::tool::NoseCompensator`]) reads them to prove that the height of the
 //! nose over the arc is concave, so that its one local maximum is the global one (see
-//! [`SectionBounds::concave_nose_height`]).
+//! [`SectionBounds::nose_height_concavity`]).
 //!
 //! A family gives bounds only where it can prove them from its formula (the even asphere, the
 //! concave lens array); every other family gives none and is searched in full.
@@ -18,16 +18,19 @@ pub struct SectionBounds {
 }
 
 impl SectionBounds {
-    /// Whether the nose height `F(a) = f(ρ_s + r·sin a) + r·cos a` is strictly concave for
-    /// |a| ≤ `half_angle` (< 90°) wherever the arc stays on the disc, with ridges only at the
-    /// section's slope kinks (the slope drops across each, so F′ drops too).
+    /// A lower bound m > 0 of −F″ for the nose height `F(a) = f(ρ_s + r·sin a) + r·cos a` over
+    /// |a| ≤ `half_angle` (< 90°) wherever the arc stays on the disc, F′ dropping by at least
+    /// m·Δa over any Δa (ridges at the slope kinks only make it drop more); `None` where F
+    /// cannot be proven strictly concave so.
     ///
-    /// `F″ = r²·cos²a·f″ − r·sin a·f′ − r·cos a ≤ r·cos a·(r·K⁺·cos a + S·tan|a| − 1)` with
-    /// S ≥ |f′| and K⁺ ≥ max(f″, 0): negative when `r·K⁺ + S·tan(β/2) < 1`. The test asks for
-    /// 0.9, a margin for the rounding of the bounds.
-    pub fn concave_nose_height(&self, r: f64, half_angle: f64) -> bool {
-        let lhs = r * self.max_curvature.max(0.0) + self.max_slope * half_angle.tan();
-        half_angle < std::f64::consts::FRAC_PI_2 && lhs.is_finite() && lhs < 0.9
+    /// `F″ = r²·cos²a·f″ − r·sin a·f′ − r·cos a ≤ −r·cos a·(1 − r·K⁺·cos a − S·tan|a|)` with
+    /// S ≥ |f′| and K⁺ ≥ max(f″, 0), so `m = r·cos(β/2)·(1 − q)` with
+    /// `q = r·K⁺ + S·tan(β/2)`, asked to stay below 0.9 (a margin for the rounding of the
+    /// bounds).
+    pub fn nose_height_concavity(&self, r: f64, half_angle: f64) -> Option<f64> {
+        let q = r * self.max_curvature.max(0.0) + self.max_slope * half_angle.tan();
+        (half_angle < std::f64::consts::FRAC_PI_2 && q.is_finite() && q < 0.9 && r > 0.0)
+            .then(|| r * half_angle.cos() * (1.0 - q))
     }
 }
 
@@ -41,8 +44,8 @@ mod tests {
             max_slope: 0.0,
             max_curvature: 0.0,
         };
-        assert!(b.concave_nose_height(1.0, 89f64.to_radians()));
-        assert!(!b.concave_nose_height(1.0, 90f64.to_radians()));
+        assert!(b.nose_height_concavity(1.0, 89f64.to_radians()).is_some());
+        assert!(b.nose_height_concavity(1.0, 90f64.to_radians()).is_none());
     }
 
     #[test]
@@ -52,13 +55,18 @@ mod tests {
             max_slope: 0.0,
             max_curvature: k,
         };
-        assert!(bowl(0.5).concave_nose_height(1.0, 0.5));
-        assert!(!bowl(1.0 / 1.05).concave_nose_height(1.0, 0.5));
+        let m = bowl(0.5).nose_height_concavity(1.0, 0.5).unwrap();
+        assert!((m - 0.5f64.cos() * 0.5).abs() < 1e-15, "{m}");
+        assert!(bowl(1.0 / 1.05).nose_height_concavity(1.0, 0.5).is_none());
         // Steep flanks: slope 1 at 50° fails (tan 50° > 0.9).
         let steep = SectionBounds {
             max_slope: 1.0,
             max_curvature: 0.0,
         };
-        assert!(!steep.concave_nose_height(0.5, 50f64.to_radians()));
+        assert!(
+            steep
+                .nose_height_concavity(0.5, 50f64.to_radians())
+                .is_none()
+        );
     }
 }

@@ -25,7 +25,7 @@
 //! **Concave shortcut.** Where the surface bounds its radial sections
 //! ([`crate::surface::Surface::section_bounds`]: slope ≤ S, curvature ≤ K, slope kinks only
 //! ridges) and `r·K⁺ + S·tan(β/2) < 0.9`, F″ < 0 on the whole arc and F′ only drops at kinks
-//! ([`crate::surface::SectionBounds::concave_nose_height`]): F has one local maximum, the
+//! ([`crate::surface::SectionBounds::nose_height_concavity`]): F has one local maximum, the
 //! global one. It is then found without the grid: Newton on F′ = 0 from a = 0, the kinks'
 //! sides probed where a step would cross one, the maximum bracketed and refined as above, about
 //! 4 evaluations a point instead of 20 or more. The bounds are the certificate; a surface
@@ -185,6 +185,10 @@ impl NoseCompensator {
         let r = self.r;
         let clamp_asin = |s: f64| s.clamp(-1.0, 1.0).asin();
         let (to_rim, to_far_rim) = (self.limit_radius - rho_s, -self.limit_radius - rho_s);
+        if self.waviness.is_none() && to_rim >= r && to_far_rim <= -r {
+            // The part reaches beyond the whole circle: the included angle alone limits.
+            return (-self.half_angle, self.half_angle);
+        }
         let (hi, lo) = match &self.waviness {
             None => (clamp_asin(to_rim / r), clamp_asin(to_far_rim / r)),
             Some(w) => (w.angle_at_offset(to_rim), w.angle_at_offset(to_far_rim)),
@@ -235,13 +239,15 @@ impl NoseCompensator {
             edge: self.waviness.as_ref(),
         };
         let (lo, hi) = self.arc_range(rho_s);
-        let best = if self.waviness.is_none()
-            && surface
+        let concavity = match self.waviness {
+            None => surface
                 .section_bounds(self.limit_radius)
-                .is_some_and(|b| b.concave_nose_height(r, self.half_angle))
-        {
+                .and_then(|b| b.nose_height_concavity(r, self.half_angle)),
+            Some(_) => None,
+        };
+        let best = if let Some(m) = concavity {
             let kinks = self.kink_angles(surface, rho_s, c, s, lo, hi);
-            section.concave_peak(&kinks, lo, hi)?
+            section.concave_peak(&kinks, lo, hi, m)?
         } else {
             self.search(&section, lo, hi)?
         };
@@ -305,28 +311,30 @@ impl NoseCompensator {
         hi: f64,
     ) -> Vec<f64> {
         let r = self.r;
-        let mut kinks = Vec::new();
+        let mut angles = Vec::new();
         surface.slope_kinks(
             Line::radial(c, s),
             rho_s + self.edge_radius(lo) * lo.sin(),
             rho_s + self.edge_radius(hi) * hi.sin(),
-            &mut kinks,
+            &mut angles,
         );
         let table: &[f64] = self.waviness.as_ref().map_or(&[], |w| w.angles());
-        if kinks.is_empty() && table.is_empty() {
-            return kinks;
+        if angles.is_empty() && table.is_empty() {
+            return angles;
         }
         let to_angle = |t: f64| match &self.waviness {
             None => ((t - rho_s) / r).clamp(-1.0, 1.0).asin(),
             Some(w) => w.angle_at_offset(t - rho_s),
         };
-        let mut angles: Vec<f64> = kinks
-            .iter()
-            .map(|&t| to_angle(t))
-            .flat_map(|a| [a - KINK_OFFSET, a + KINK_OFFSET])
-            .chain(table.iter().copied())
-            .filter(|a| *a > lo && *a < hi)
-            .collect();
+        // In place: each kink's parameter becomes the angle just before it, the one just
+        // after is appended.
+        for i in 0..angles.len() {
+            let a = to_angle(angles[i]);
+            angles[i] = a - KINK_OFFSET;
+            angles.push(a + KINK_OFFSET);
+        }
+        angles.extend_from_slice(table);
+        angles.retain(|a| *a > lo && *a < hi);
         angles.sort_by(f64::total_cmp);
         angles
     }
@@ -445,16 +453,27 @@ impl Section<'_> {
     }
 
     /// The maximum of F over `[lo, hi]` where F is concave
-    /// ([`crate::surface::SectionBounds::concave_nose_height`]): F′ never rises, so the sign
+    /// ([`crate::surface::SectionBounds::nose_height_concavity`]): F′ never rises, so the sign
     /// of F′ anywhere says on which side the one maximum lies. Newton from a = 0 (clamped to
     /// the arc) until a step would cross a slope kink (`kinks`: the angles just either side of
-    /// each, ascending), where the kink's sides are probed instead, or the arc's end; once the
-    /// steps are small each probes twice as far, so that the maximum is bracketed; then
-    /// [`Section::refine_from`] closes the bracket.
-    fn concave_peak(&self, kinks: &[f64], lo: f64, hi: f64) -> Result<Sample, UndefinedError> {
+    /// each, ascending), where the kink's sides are probed instead, or the arc's end. With
+    /// −F″ ≥ `m`, the maximum lies within |F′(x)|/m of a sample x and exceeds F(x) by at most
+    /// F′(x)²/(2m): a sample x with |F′(x)|/m ≤ 10⁻¹⁰ rad is the answer (its height then
+    /// within 10⁻²⁰·m mm of the maximum, its contact within 10⁻¹⁰·r). Otherwise, once the
+    /// maximum is bracketed, [`Section::refine_from`] closes the bracket.
+    fn concave_peak(
+        &self,
+        kinks: &[f64],
+        lo: f64,
+        hi: f64,
+        m: f64,
+    ) -> Result<Sample, UndefinedError> {
         let mut x = self.at(0f64.clamp(lo, hi))?;
         let (mut left, mut right) = (None::<Sample>, None::<Sample>);
         for _ in 0..100 {
+            if x.g.abs() <= 1e-10 * m {
+                return Ok(x);
+            }
             if x.g > 0.0 {
                 left = Some(x);
             } else if x.g < 0.0 {
@@ -478,7 +497,6 @@ impl Section<'_> {
             };
             let stop = kink.unwrap_or(end);
             let step = if x.gg < 0.0 { -x.g / x.gg } else { f64::NAN };
-            let step = if step.abs() < 1e-7 { 2.0 * step } else { step };
             let target = x.a + step;
             let a = if (up && target < stop) || (!up && target > stop) {
                 target
@@ -610,7 +628,11 @@ mod tests {
         for (k, s) in surfaces.into_iter().enumerate() {
             let comp = NoseCompensator::new(&tool(0.5), s.feature_length_mm(), 5.0).unwrap();
             let bounds = s.section_bounds(5.0).unwrap();
-            assert!(bounds.concave_nose_height(0.5, comp.half_angle()));
+            assert!(
+                bounds
+                    .nose_height_concavity(0.5, comp.half_angle())
+                    .is_some()
+            );
             let (mut rims, mut n) = (0, 0);
             for i in 0..4000 {
                 let (rho, theta) = (5.2 - 5.4 * i as f64 / 4000.0, 0.7 * i as f64);

@@ -13,10 +13,14 @@ the point index, one-way compensation as the largest of F(a) = f(ρ_s + r·sin a
 a yardstick for the time, not a reference for the heights.
 
 Each row runs spiralcam and then NumPy on the same job, back to back, and prints both times,
-their ratio and the 1-minute load average before each (the build machine is shared). spiralcam's
-peak resident set is read from the kernel's accounting of the child.
+their ratio and the 1-minute load average before each (the build machine is shared; peak memory:
+`tests/bench/peak_memory.py`).
 
     python3 tests/bench/plan_numpy.py [--sizes 4000001,28400001] [--only spiralcam|numpy]
+                                      [--baseline OTHER_SPIRALCAM_BINARY]
+
+`--baseline` runs another build of the tool on the same job in the same row (before/after).
+Times are wall clock and, in brackets, CPU seconds (user + system, all threads).
 
 Needs numpy: when it is missing, the script makes a virtual environment in
 /tmp/spiralcam-numpy-venv, installs it there from PyPI (once) and runs itself in it. Build the
@@ -164,10 +168,20 @@ def numpy_plan(j, out_path):
     return n
 
 
+def cpu_children():
+    u = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return u.ru_utime + u.ru_stime
+
+
+def cpu_self():
+    u = resource.getrusage(resource.RUSAGE_SELF)
+    return u.ru_utime + u.ru_stime
+
+
 def spiralcam_plan(binary, job_path, nc_path):
-    """Runs the command-line tool; returns (seconds, peak RSS MiB, points)."""
+    """Runs the command-line tool; returns (seconds, CPU seconds, points)."""
     report = nc_path + ".report.json"
-    before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+    cpu = cpu_children()
     t = time.perf_counter()
     subprocess.run(
         [binary, "plan", job_path, "--nc", nc_path, "--report", report, "--max-points", "1e9"],
@@ -175,10 +189,10 @@ def spiralcam_plan(binary, job_path, nc_path):
         stderr=subprocess.DEVNULL,
     )
     seconds = time.perf_counter() - t
-    peak = max(before, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)
+    cpu = cpu_children() - cpu
     with open(report) as f:
         points = json.load(f)["points"]
-    return seconds, peak / 1024.0, points
+    return seconds, cpu, points
 
 
 def main():
@@ -186,15 +200,20 @@ def main():
     args = sys.argv[1:]
     sizes = [4_000_001, 28_400_001]
     only = None
+    baseline = None
     while args:
         flag = args.pop(0)
         if flag == "--sizes":
             sizes = [int(float(v)) for v in args.pop(0).split(",")]
         elif flag == "--only":
             only = args.pop(0)
+        elif flag == "--baseline":
+            baseline = args.pop(0)
         else:
             sys.exit(f"unknown argument {flag}")
     binary = os.path.join(ROOT, "target", "release", "spiralcam")
+    tools = [("spiralcam", binary)] + ([("baseline", baseline)] if baseline else [])
+    print(f"{os.cpu_count()} CPUs; times: wall s [CPU s], load = 1-min load average before")
     with tempfile.TemporaryDirectory() as tmp:
         for points in sizes:
             for kind in ("asphere", "lens_array"):
@@ -204,23 +223,30 @@ def main():
                     json.dump(j, f)
                 nc = os.path.join(tmp, "out.ngc")
                 line = f"{kind:10} {points:>10}:"
-                t_sc = t_np = None
+                times = {}
                 if only in (None, "spiralcam"):
-                    load = os.getloadavg()[0]
-                    t_sc, peak, n = spiralcam_plan(binary, job_path, nc)
-                    size = os.path.getsize(nc) / 1e6
-                    line += f" spiralcam {t_sc:6.2f} s ({n / t_sc / 1e6:5.2f} M/s, {size:.0f} MB,"
-                    line += f" peak {peak:.1f} MiB, load {load:.2f})"
-                    os.remove(nc)
+                    for name, path in tools:
+                        load = os.getloadavg()[0]
+                        t, cpu, n = spiralcam_plan(path, job_path, nc)
+                        size = os.path.getsize(nc) / 1e6
+                        times[name] = t
+                        line += f" {name} {t:6.2f} s [{cpu:5.2f}] ({n / t / 1e6:5.2f} M/s,"
+                        line += f" {size:.0f} MB, load {load:.1f});"
+                        os.remove(nc)
                 if only in (None, "numpy"):
                     load = os.getloadavg()[0]
+                    cpu = cpu_self()
                     t = time.perf_counter()
                     n = numpy_plan(j, nc)
-                    t_np = time.perf_counter() - t
-                    line += f" numpy {t_np:6.2f} s ({n / t_np / 1e6:5.2f} M/s, load {load:.2f})"
+                    t = time.perf_counter() - t
+                    cpu = cpu_self() - cpu
+                    times["numpy"] = t
+                    line += f" numpy {t:6.2f} s [{cpu:5.2f}] ({n / t / 1e6:5.2f} M/s, load {load:.1f});"
                     os.remove(nc)
-                if t_sc and t_np:
-                    line += f" ratio {t_np / t_sc:5.1f}x"
+                if "numpy" in times:
+                    for name, _ in tools:
+                        if name in times:
+                            line += f" numpy/{name} {times['numpy'] / times[name]:4.1f}x"
                 print(line, flush=True)
 
 

@@ -1,6 +1,8 @@
 //! Work split over the machine's cores: every core natively, one thread in the browser, where
 //! the module has no threads and spawning one would trap. Each item is computed alone, so a
-//! result never depends on how the work was split.
+//! result never depends on how the work was split. [`fill_chunks`] splits one slice over the
+//! threads; [`pipeline`] streams batches through them in order while the calling thread
+//! consumes the finished ones (a producer-consumer pipeline over `std::sync::mpsc` channels).
 
 /// Threads for parallel work: every core natively, one in the browser.
 pub fn workers() -> usize {
@@ -40,9 +42,139 @@ where
     })
 }
 
+/// Streams batches of items through [`workers`] threads, handing the results on in order:
+/// `fill` refills an input batch on the calling thread (left empty: no more), `work(first,
+/// input, output)` computes a batch on a worker (`first` the index of its first item), and
+/// `consume` takes the outputs in order on the calling thread while the workers compute the
+/// next batches. At most `workers + 1` batches are in flight, so memory stays bounded; buffers
+/// are reused. With one worker (the browser) everything runs on the calling thread. The first
+/// error in order wins and stops the pipeline.
+pub fn pipeline<I, O, E>(
+    mut fill: impl FnMut(&mut Vec<I>),
+    work: impl Fn(u64, &[I], &mut Vec<O>) -> Result<(), E> + Sync,
+    mut consume: impl FnMut(&[O]) -> Result<(), E>,
+) -> Result<(), E>
+where
+    I: Send,
+    O: Send,
+    E: Send,
+{
+    let w = workers();
+    let (mut input, mut output) = (Vec::new(), Vec::new());
+    let mut first = 0u64;
+    if w == 1 {
+        loop {
+            fill(&mut input);
+            if input.is_empty() {
+                return Ok(());
+            }
+            work(first, &input, &mut output)?;
+            consume(&output)?;
+            first += input.len() as u64;
+        }
+    }
+    type Job<I, O> = (u64, Vec<I>, Vec<O>);
+    type Done<I, O, E> = (Vec<I>, Vec<O>, Result<(), E>);
+    std::thread::scope(|scope| {
+        let work = &work;
+        let (mut jobs, mut results) = (Vec::new(), Vec::new());
+        for _ in 0..w {
+            let (job_tx, job_rx) = std::sync::mpsc::channel::<Job<I, O>>();
+            let (done_tx, done_rx) = std::sync::mpsc::channel::<Done<I, O, E>>();
+            scope.spawn(move || {
+                for (first, input, mut output) in job_rx {
+                    let r = work(first, &input, &mut output);
+                    if done_tx.send((input, output, r)).is_err() {
+                        break;
+                    }
+                }
+            });
+            jobs.push(job_tx);
+            results.push(done_rx);
+        }
+        let mut spare = vec![(input, output)];
+        let (mut sent, mut received, mut filling) = (0usize, 0usize, true);
+        loop {
+            while filling && sent - received <= w {
+                let (mut input, output) = spare.pop().unwrap_or_default();
+                fill(&mut input);
+                if input.is_empty() {
+                    filling = false;
+                    break;
+                }
+                let n = input.len() as u64;
+                if jobs[sent % w].send((first, input, output)).is_err() {
+                    // The worker is gone (it panicked): the scope re-raises its panic.
+                    return Ok(());
+                }
+                first += n;
+                sent += 1;
+            }
+            if received == sent {
+                return Ok(());
+            }
+            let Ok((input, output, r)) = results[received % w].recv() else {
+                return Ok(());
+            };
+            r?;
+            consume(&output)?;
+            received += 1;
+            spare.push((input, output));
+        }
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_pipeline_hands_every_batch_on_in_order_and_stops_at_the_first_error() {
+        for n in [0usize, 1, 5, 1000, 10_007] {
+            let mut next = 0usize;
+            let fill = |buf: &mut Vec<usize>| {
+                buf.clear();
+                buf.extend(next..(next + 97).min(n));
+                next = (next + 97).min(n);
+            };
+            let mut seen = Vec::new();
+            pipeline(
+                fill,
+                |first, input: &[usize], out: &mut Vec<(u64, usize)>| {
+                    out.clear();
+                    out.extend(input.iter().map(|&i| (first, i * 3)));
+                    Ok::<(), usize>(())
+                },
+                |out| {
+                    seen.extend_from_slice(out);
+                    Ok(())
+                },
+            )
+            .unwrap();
+            assert_eq!(seen.len(), n);
+            for (k, (first, v)) in seen.iter().enumerate() {
+                assert_eq!((*v, *first as usize), (3 * k, k - k % 97), "n {n}");
+            }
+        }
+        let mut next = 0usize;
+        let e = pipeline(
+            |buf: &mut Vec<usize>| {
+                buf.clear();
+                buf.extend(next..(next + 10).min(1000));
+                next += 10;
+            },
+            |_, input, out: &mut Vec<usize>| match input.iter().find(|&&i| i % 300 == 299) {
+                Some(&i) => Err(i),
+                None => {
+                    out.clear();
+                    out.extend_from_slice(input);
+                    Ok(())
+                }
+            },
+            |_| Ok(()),
+        );
+        assert_eq!(e, Err(299));
+    }
 
     #[test]
     fn chunks_cover_every_item_once_with_its_index() {

@@ -49,15 +49,24 @@ pub fn push_scaled(buf: &mut Vec<u8>, units: i64, decimals: u32) {
     push_digits(buf, mag / p);
     if decimals > 0 {
         buf.push(b'.');
-        let frac = mag % p;
-        let start = buf.len();
-        push_digits(buf, frac);
-        let written = buf.len() - start;
-        let pad = decimals as usize - written;
-        if pad > 0 {
-            buf.splice(start..start, std::iter::repeat_n(b'0', pad));
-        }
+        push_padded(buf, mag % p, decimals as usize);
     }
+}
+
+/// Appends `n` (< 10^width) with exactly `width` digits, leading zeros included.
+fn push_padded(buf: &mut Vec<u8>, mut n: u64, width: usize) {
+    let mut tmp = [b'0'; 20];
+    let mut i = width;
+    while i >= 2 && n > 0 {
+        let k = (n % 100) as usize * 2;
+        n /= 100;
+        i -= 2;
+        tmp[i..i + 2].copy_from_slice(&PAIRS[k..k + 2]);
+    }
+    if i >= 1 && n > 0 {
+        tmp[i - 1] = b'0' + n as u8;
+    }
+    buf.extend_from_slice(&tmp[..width]);
 }
 
 /// Appends `v` rounded to `decimals` digits; `false` (and nothing appended) if it cannot be.
@@ -71,16 +80,29 @@ pub fn push_fixed(buf: &mut Vec<u8>, v: f64, decimals: u32) -> bool {
     }
 }
 
+/// "00" … "99": two digits a division.
+const PAIRS: &[u8; 200] = b"0001020304050607080910111213141516171819\
+2021222324252627282930313233343536373839\
+4041424344454647484950515253545556575859\
+6061626364656667686970717273747576777879\
+8081828384858687888990919293949596979899";
+
 fn push_digits(buf: &mut Vec<u8>, mut n: u64) {
     let mut tmp = [0u8; 20];
     let mut i = tmp.len();
-    loop {
+    while n >= 100 {
+        let k = (n % 100) as usize * 2;
+        n /= 100;
+        i -= 2;
+        tmp[i..i + 2].copy_from_slice(&PAIRS[k..k + 2]);
+    }
+    if n >= 10 {
+        let k = n as usize * 2;
+        i -= 2;
+        tmp[i..i + 2].copy_from_slice(&PAIRS[k..k + 2]);
+    } else {
         i -= 1;
-        tmp[i] = b'0' + (n % 10) as u8;
-        n /= 10;
-        if n == 0 {
-            break;
-        }
+        tmp[i] = b'0' + n as u8;
     }
     buf.extend_from_slice(&tmp[i..]);
 }
@@ -126,6 +148,20 @@ mod tests {
                 // (std: to even, ours: away from zero), which these values avoid.
                 assert_eq!(fixed(v, d), std, "{v} with {d} decimals");
             }
+        }
+    }
+
+    #[test]
+    fn digits_match_std_for_every_length() {
+        let mut n = 0u64;
+        let mut b = Vec::new();
+        for k in 0..2000u64 {
+            for v in [k, n, n.wrapping_sub(1), u64::MAX - k] {
+                b.clear();
+                push_digits(&mut b, v);
+                assert_eq!(b, v.to_string().as_bytes());
+            }
+            n = n.wrapping_mul(10).wrapping_add(k % 10 + 1);
         }
     }
 

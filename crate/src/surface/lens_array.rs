@@ -9,7 +9,7 @@
 //! a ≤ p, a point can only lie in the lenslet of its nearest grid node, found in O(1).
 //! A lenslet sits on the spindle axis; grid rows run along X.
 
-use super::{Line, Local, PartDisc, Surface, UndefinedError};
+use super::{Line, Local, PartDisc, SectionBounds, Surface, UndefinedError};
 use crate::field::{FieldError, length};
 use serde::{Deserialize, Serialize};
 
@@ -247,6 +247,22 @@ impl Surface for LensArray {
         });
     }
 
+    /// Concave lenslets only: each is a bowl whose rim is a ridge (the slope drops from the
+    /// land's 0 into the bowl and from the bowl's wall back to 0). On a sphere of radius R,
+    /// |∇z| = ρ/w and every second directional derivative is at most R²/w³ (w = √(R² − ρ²)),
+    /// both largest at the rim (ρ = a/2); the land is flat. Convex lenslets (valleys at their
+    /// rims) have none.
+    fn section_bounds(&self, _radius_mm: f64) -> Option<SectionBounds> {
+        if self.spec.form == Form::Convex {
+            return None;
+        }
+        let (big, w) = (self.spec.lens_radius_mm, self.rim_w);
+        Some(SectionBounds {
+            max_slope: self.half_aperture / w * (1.0 + 1e-9),
+            max_curvature: big * big / (w * w * w) * (1.0 + 1e-9),
+        })
+    }
+
     fn feature_length_mm(&self) -> f64 {
         let land = self.spec.pitch_mm - self.spec.aperture_mm;
         if land > 0.0 {
@@ -280,6 +296,34 @@ impl Surface for LensArray {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn section_bounds_hold_over_the_part_and_convex_arrays_have_none() {
+        let l = LensArray::new(&LensArraySpec::paper004(), PartDisc::centred(5.0)).unwrap();
+        let b = l.section_bounds(5.0).unwrap();
+        let (mut slope, mut curv) = (0.0f64, 0.0f64);
+        for i in 0..200_000 {
+            let (t, theta) = (-5.0 + 10.0 * i as f64 / 200_000.0, 0.37 + 1e-4 * i as f64);
+            let (s, c) = f64::sin_cos(theta);
+            let r = l.local(t * c, t * s).unwrap().radial(c, s);
+            slope = slope.max(r.slope.abs());
+            curv = curv.max(r.curvature_term);
+        }
+        assert!(
+            slope <= b.max_slope && slope > 0.99 * b.max_slope,
+            "{slope} {b:?}"
+        );
+        assert!(
+            curv <= b.max_curvature && curv > 0.95 * b.max_curvature,
+            "{curv} {b:?}"
+        );
+        let convex = LensArraySpec {
+            form: Form::Convex,
+            ..LensArraySpec::paper004()
+        };
+        let convex = LensArray::new(&convex, PartDisc::centred(5.0)).unwrap();
+        assert!(convex.section_bounds(5.0).is_none());
+    }
 
     #[test]
     fn paper004_lenslet_sag_is_minus_44_4_um() {

@@ -52,6 +52,7 @@ pub mod q_con;
 pub mod q_polynomials;
 pub mod reframed;
 pub mod scattered;
+pub mod section_bounds;
 pub mod sinusoid;
 pub mod step_face;
 pub mod tilted_flat;
@@ -82,6 +83,7 @@ pub use q_bfs::{QBfs, QBfsSpec};
 pub use q_con::{QCon, QConSpec};
 pub use reframed::Reframed;
 pub use scattered::{Scattered, ScatteredSpec};
+pub use section_bounds::SectionBounds;
 pub use sinusoid::{Sinusoid, SinusoidSpec};
 pub use step_face::{StepFace, StepFaceSpec};
 pub use tilted_flat::{TiltedFlat, TiltedFlatSpec};
@@ -274,6 +276,15 @@ pub trait Surface: Send + Sync + std::fmt::Debug {
     /// samples the section is smooth. Smooth surfaces have none, the default.
     fn slope_kinks(&self, line: Line, t0: f64, t1: f64, out: &mut Vec<f64>) {
         let _ = (line, t0, t1, out);
+    }
+
+    /// Bounds on the radial sections (through the axis) over the disc of radius `radius_mm`
+    /// about the axis ([`SectionBounds`]), or `None` where the family cannot prove them or has
+    /// a slope kink there that is not a ridge (the slope rising across it). `None` by default:
+    /// the one-way compensation then searches the whole nose arc.
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        let _ = radius_mm;
+        None
     }
 
     /// One line restating the definition, for NC headers and reports.

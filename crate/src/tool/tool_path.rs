@@ -8,7 +8,7 @@ use super::NoseCompensator;
 use super::reach::{self, Reach};
 use crate::field::FieldError;
 use crate::job::{Compensation, Job, Sampling, StrategySpec};
-use crate::parallel::fill_chunks;
+use crate::parallel::pipeline;
 use crate::path::{PathError, PathPoint, Spiral, SpiralPoint};
 use crate::progress::{PROGRESS_EVERY, Progress, ProgressFn, Stage, ignore};
 use crate::surface::{Surface, UndefinedError};
@@ -188,26 +188,6 @@ impl ToolPath {
         ))
     }
 
-    /// Compensates a batch of spiral points starting at path index `first` into `out`, in
-    /// order, split over the machine's cores ([`crate::parallel`]). Each point is computed
-    /// alone, so the result is the same whatever the split; the first error in path order wins.
-    fn compensate_batch(
-        &self,
-        first: u64,
-        input: &[SpiralPoint],
-        out: &mut Vec<(PathPoint, bool)>,
-    ) -> Result<(), UndefinedError> {
-        out.clear();
-        out.resize(input.len(), (PathPoint::default(), false));
-        fill_chunks(out, |start, slots| {
-            for (j, slot) in slots.iter_mut().enumerate() {
-                let k = start + j;
-                *slot = self.path_point(first + k as u64, input[k])?;
-            }
-            Ok(())
-        })
-    }
-
     /// Up to `n` runs of three consecutive points spread evenly in radius from the start of the
     /// path to the centre (a run with fewer than three points left before the centre is left
     /// out), computed without walking the path: what an estimate of the job's cost reads (and
@@ -249,11 +229,12 @@ impl ToolPath {
         )
     }
 
-    /// Computes every point in order, compensating batches of 16 384 points on every core, and
-    /// hands each to `visit` with whether the two-way offset folds there; `progress` is called
-    /// every [`PROGRESS_EVERY`] points and at the end, as `stage` (`Break` cancels). Returns
-    /// the count.
-    pub fn for_each_point<E: From<PathError>>(
+    /// Computes every point in order, compensating batches of 16 384 points on every core
+    /// ([`crate::parallel::pipeline`]: the next batches are computed while `visit` takes this
+    /// one), and hands each to `visit` with whether the two-way offset folds there; `progress`
+    /// is called every [`PROGRESS_EVERY`] points and at the end, as `stage` (`Break` cancels).
+    /// Returns the count.
+    pub fn for_each_point<E: From<PathError> + Send>(
         &self,
         stage: Stage,
         progress: &mut ProgressFn,
@@ -262,25 +243,32 @@ impl ToolPath {
         let total = self.spiral.point_count_hint();
         let mut done = 0u64;
         let mut spiral = self.spiral.points();
-        let (mut input, mut output) = (Vec::with_capacity(BATCH), Vec::with_capacity(BATCH));
-        loop {
-            input.clear();
-            input.extend(spiral.by_ref().take(BATCH));
-            if input.is_empty() {
-                break;
-            }
-            self.compensate_batch(done, &input, &mut output)
-                .map_err(|e| E::from(e.into()))?;
-            for (p, folds) in &output {
-                visit(p, *folds)?;
-                done += 1;
-                if done.is_multiple_of(PROGRESS_EVERY)
-                    && progress(Progress { stage, done, total }).is_break()
-                {
-                    return Err(PathError::Cancelled.into());
+        pipeline::<SpiralPoint, (PathPoint, bool), E>(
+            |input: &mut Vec<SpiralPoint>| {
+                input.clear();
+                input.extend(spiral.by_ref().take(BATCH));
+            },
+            |first, input, output: &mut Vec<(PathPoint, bool)>| {
+                output.clear();
+                for (k, sp) in input.iter().enumerate() {
+                    let p = self.path_point(first + k as u64, *sp);
+                    output.push(p.map_err(|e| E::from(e.into()))?);
                 }
-            }
-        }
+                Ok(())
+            },
+            |output| {
+                for (p, folds) in output {
+                    visit(p, *folds)?;
+                    done += 1;
+                    if done.is_multiple_of(PROGRESS_EVERY)
+                        && progress(Progress { stage, done, total }).is_break()
+                    {
+                        return Err(PathError::Cancelled.into());
+                    }
+                }
+                Ok(())
+            },
+        )?;
         let _ = progress(Progress {
             stage,
             done,

@@ -137,14 +137,14 @@ impl OutputFile {
             return Ok(Self {
                 target: target.to_path_buf(),
                 temp: None,
-                writer: BufWriter::with_capacity(1 << 16, file),
+                writer: BufWriter::with_capacity(1 << 20, file),
             });
         }
         let (file, temp) = create_temp(target).map_err(fail)?;
         Ok(Self {
             target: target.to_path_buf(),
             temp: Some(temp),
-            writer: BufWriter::with_capacity(1 << 16, file),
+            writer: BufWriter::with_capacity(1 << 20, file),
         })
     }
 

@@ -1,0 +1,72 @@
+//! Bounds on a surface's radial sections over a disc about the spindle axis: the largest slope
+//! |f′| and the largest upward curvature f″ of `t ↦ f(t·cos θ, t·sin θ)` for |t| ≤ R and every
+//! θ, and whether every slope kink there is a ridge (the slope drops across it). The one-way
+//! compensation ([`crate::tool::NoseCompensator`]) reads them to prove that the height of the
+//! nose over the arc is concave, so that its one local maximum is the global one (see
+//! [`SectionBounds::nose_height_concavity`]).
+//!
+//! A family gives bounds only where it can prove them from its formula (the even asphere, the
+//! concave lens array); every other family gives none and is searched in full.
+
+/// Upper bounds on a surface's radial sections over a disc (see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SectionBounds {
+    /// An upper bound of |f′| over the disc.
+    pub max_slope: f64,
+    /// An upper bound of f″ over the disc (1/mm; may be negative).
+    pub max_curvature: f64,
+}
+
+impl SectionBounds {
+    /// A lower bound m > 0 of −F″ for the nose height `F(a) = f(ρ_s + r·sin a) + r·cos a` over
+    /// |a| ≤ `half_angle` (< 90°) wherever the arc stays on the disc, F′ dropping by at least
+    /// m·Δa over any Δa (ridges at the slope kinks only make it drop more); `None` where F
+    /// cannot be proven strictly concave so.
+    ///
+    /// `F″ = r²·cos²a·f″ − r·sin a·f′ − r·cos a ≤ −r·cos a·(1 − r·K⁺·cos a − S·tan|a|)` with
+    /// S ≥ |f′| and K⁺ ≥ max(f″, 0), so `m = r·cos(β/2)·(1 − q)` with
+    /// `q = r·K⁺ + S·tan(β/2)`, asked to stay below 0.9 (a margin for the rounding of the
+    /// bounds).
+    pub fn nose_height_concavity(&self, r: f64, half_angle: f64) -> Option<f64> {
+        let q = r * self.max_curvature.max(0.0) + self.max_slope * half_angle.tan();
+        (half_angle < std::f64::consts::FRAC_PI_2 && q.is_finite() && q < 0.9 && r > 0.0)
+            .then(|| r * half_angle.cos() * (1.0 - q))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_flat_section_is_concave_for_any_angle_below_90_degrees() {
+        let b = SectionBounds {
+            max_slope: 0.0,
+            max_curvature: 0.0,
+        };
+        assert!(b.nose_height_concavity(1.0, 89f64.to_radians()).is_some());
+        assert!(b.nose_height_concavity(1.0, 90f64.to_radians()).is_none());
+    }
+
+    #[test]
+    fn the_nose_term_outweighs_a_bowl_no_tighter_than_the_nose() {
+        // A bowl of radius 2r: r·K = 0.5, flat: concave; one of radius r·1.05: not proven.
+        let bowl = |k: f64| SectionBounds {
+            max_slope: 0.0,
+            max_curvature: k,
+        };
+        let m = bowl(0.5).nose_height_concavity(1.0, 0.5).unwrap();
+        assert!((m - 0.5f64.cos() * 0.5).abs() < 1e-15, "{m}");
+        assert!(bowl(1.0 / 1.05).nose_height_concavity(1.0, 0.5).is_none());
+        // Steep flanks: slope 1 at 50° fails (tan 50° > 0.9).
+        let steep = SectionBounds {
+            max_slope: 1.0,
+            max_curvature: 0.0,
+        };
+        assert!(
+            steep
+                .nose_height_concavity(0.5, 50f64.to_radians())
+                .is_none()
+        );
+    }
+}

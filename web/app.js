@@ -14,6 +14,7 @@ import { JobForm } from './form.js';
 import { bindImport } from './import.js';
 import { bindGestures } from './gestures.js';
 import { drawPlot, prepare } from './plots.js';
+import { offlineCopy } from './offline.js';
 import { FORMAT, dataFiles, formatProblem, jobFromLocation, shareLink } from './share.js';
 
 const $ = (id) => document.getElementById(id);
@@ -896,6 +897,10 @@ async function main() {
   };
   window.addEventListener('hashchange', openLocation);
   await openLocation();
+  offlineCopy(status, (text) => {
+    $('offline').textContent = text;
+    $('offline').hidden = false;
+  });
 }
 
 const started = new URLSearchParams(location.search).has('embed') ? import('./embed-page.js').then((m) => m.startEmbed()) : main();

@@ -5,6 +5,7 @@
 // message}`). Messages are accepted from this site's origin and from the origins named by
 // `allow` parameters (`index.html?embed&allow=https://docs.example.com`); others are ignored.
 
+import { offlineCopy } from './offline.js';
 import './spiralcam-viewer.js';
 
 /** Replaces the page's body with the viewer and answers its parent. */
@@ -55,6 +56,7 @@ export function startEmbed() {
     viewer.setJob(e.data.job);
   });
 
+  offlineCopy(status, () => {});
   if (location.hash.startsWith('#job=')) viewer.setAttribute('job', location.hash);
   else if (params.get('job')) viewer.setAttribute('src', new URL(params.get('job'), location.href).href);
   else setState('waiting');

@@ -15,10 +15,13 @@
 import init, { Viewer, default_job, colormap_css, colormap_stops, machine_presets, version } from '../pkg/spiralcam_web.js';
 import { JobForm } from './form.js';
 import { bindImport } from './import.js';
+import { bindGestures } from './gestures.js';
 import { drawPlot, prepare } from './plots.js';
+import { offlineCopy } from './offline.js';
+import { FORMAT, dataFiles, formatProblem, jobFromLocation, shareLink } from './share.js';
 
 const $ = (id) => document.getElementById(id);
-const status = (window.spiralcam = { state: 'loading', backend: null, report: null, analysis: null, correction: null, verification: null, started: 0, plans: 0, error: null, imported: null });
+const status = (window.spiralcam = { state: 'loading', stale: false, backend: null, report: null, analysis: null, correction: null, verification: null, started: 0, plans: 0, error: null, imported: null });
 
 function setState(s) {
   status.state = s;
@@ -590,52 +593,6 @@ function download(name, data, type) {
   setTimeout(() => URL.revokeObjectURL(url), 10_000);
 }
 
-/** Pointer and wheel gestures on the canvas → viewer camera. */
-function bindGestures(canvas, viewer, redraw) {
-  const pointers = new Map();
-  let pinch = null;
-  canvas.addEventListener('contextmenu', (e) => e.preventDefault());
-  canvas.addEventListener('pointerdown', (e) => {
-    canvas.setPointerCapture(e.pointerId);
-    pointers.set(e.pointerId, { x: e.clientX, y: e.clientY, button: e.button, shift: e.shiftKey });
-  });
-  const end = (e) => {
-    pointers.delete(e.pointerId);
-    pinch = null;
-  };
-  canvas.addEventListener('pointerup', end);
-  canvas.addEventListener('pointercancel', end);
-  canvas.addEventListener('pointermove', (e) => {
-    const p = pointers.get(e.pointerId);
-    if (!p) return;
-    const dx = e.clientX - p.x;
-    const dy = e.clientY - p.y;
-    p.x = e.clientX;
-    p.y = e.clientY;
-    if (pointers.size === 2) {
-      const [a, b] = [...pointers.values()];
-      const d = Math.hypot(a.x - b.x, a.y - b.y);
-      if (pinch) viewer.zoom(d / pinch);
-      pinch = d;
-      viewer.pan(dx / 2, dy / 2);
-    } else if (p.button === 2 || p.button === 1 || p.shift) {
-      viewer.pan(dx, dy);
-    } else {
-      viewer.orbit(dx, dy);
-    }
-    redraw();
-  });
-  canvas.addEventListener('wheel', (e) => {
-    e.preventDefault();
-    viewer.zoom(Math.exp(-e.deltaY * 0.0015));
-    redraw();
-  }, { passive: false });
-  canvas.addEventListener('dblclick', () => {
-    viewer.reset_view();
-    redraw();
-  });
-}
-
 async function main() {
   await init();
   $('version').textContent = `v${version()}`;
@@ -678,9 +635,31 @@ async function main() {
 
   const progress = $('progress');
   const progressText = $('progress-text');
+  let planned = null;
+  let working = false;
+  let form = null;
   const busy = (on) => {
+    working = on;
     $('busy').hidden = !on;
-    for (const b of document.querySelectorAll('[data-needs-plan]')) b.disabled = on || !status.report;
+    freshness();
+  };
+  /** What you download is what you see: the report, the view and the downloads belong to the
+   * job the form shows, or they are marked stale (greyed, naming the job and time they belong
+   * to) and the downloads are disabled. */
+  const freshness = () => {
+    const same = planned && form && JSON.stringify(planned.job) === JSON.stringify(form.value());
+    const problem = form?.typedProblem();
+    const fresh = Boolean(same && !problem && status.state !== 'planning');
+    status.stale = Boolean(planned && !fresh);
+    document.querySelector('main').classList.toggle('stale', status.stale);
+    for (const b of document.querySelectorAll('[data-needs-plan]')) b.disabled = working || !fresh;
+    const note = $('stale');
+    note.hidden = !status.stale;
+    if (!status.stale) return;
+    const why = status.state === 'planning' ? 're-planning the job the form shows…'
+      : problem || status.state === 'error' ? 'the form has an error: fix the highlighted field'
+        : 'the form has changed since';
+    note.textContent = `Stale: the report, the view and the downloads are the plan of “${planned.job.name}” made at ${planned.at.toLocaleTimeString('en-GB')}; ${why}.`;
   };
   const worker = new PlannerWorker((kind, done, total, stage) => {
     progress.max = total;
@@ -693,8 +672,8 @@ async function main() {
       : `${what}: ${fmt(done, 0)} ${items}`;
   });
 
-  let planned = null;
-  const form = new JobForm($('job-form'), () => schedule(), JSON.parse(machine_presets()));
+  form = new JobForm($('job-form'), () => schedule(), JSON.parse(machine_presets()));
+  status.formJob = () => form.value();
   const showFailure = (e) => {
     status.error = e.message;
     setState('error');
@@ -707,6 +686,13 @@ async function main() {
     const mine = ++generation;
     status.started += 1;
     const job = form.value();
+    const typed = form.typedProblem();
+    if (typed) {
+      worker.cancel();
+      showFailure(new Error(typed));
+      busy(false);
+      return;
+    }
     setState('planning');
     status.error = null;
     form.clearErrors();
@@ -717,7 +703,7 @@ async function main() {
     try {
       const started = performance.now();
       const m = await worker.run('plan', job);
-      planned = { job, names: m.names };
+      planned = { job, names: m.names, at: new Date() };
       status.report = m.report;
       status.plans += 1;
       showReport(m.report, job);
@@ -747,6 +733,7 @@ async function main() {
 
   let timer = 0;
   const schedule = () => {
+    freshness();
     clearTimeout(timer);
     timer = setTimeout(plan, 300);
   };
@@ -890,20 +877,60 @@ async function main() {
   $('download-fts').addEventListener('click', () => save('fts'));
   $('download-fts-grid').addEventListener('click', () => save('grid'));
   $('download-job').addEventListener('click', () => {
-    const job = form.value();
+    const job = { format: FORMAT, ...form.value() };
     download(`${job.name}.json`, `${JSON.stringify(job, null, 2)}\n`, 'application/json');
   });
+
+  /** Shows `job` from `where` in the form and plans it; a job the form cannot show (no JSON
+   * object of a job, a newer format) leaves the default job in the form, not planned, with the
+   * core's message naming the field. */
+  const openJob = async (job, where) => {
+    const refuse = (message) => {
+      form.show(JSON.parse(default_job()));
+      status.error = `${where}: ${message}`;
+      setState('error');
+      $('error').textContent = `${status.error}\nThe form shows the default job, not planned.`;
+    };
+    const problem = formatProblem(job);
+    if (problem) return refuse(problem);
+    try {
+      form.show(job);
+    } catch {
+      const message = await worker.run('plan', job).then(() => 'the form cannot show it', (e) => e.message);
+      return refuse(message);
+    }
+    $('import-listing').hidden = true;
+    const missing = dataFiles(job).filter((f) => f.file.text === undefined && f.file.path);
+    $('share-note').textContent = missing.map((f) => `${where} leaves out the data file ${f.file.path}: choose it in the field ${f.field}.`).join(' ');
+    return plan();
+  };
   $('upload-job').addEventListener('change', async (e) => {
     const file = e.target.files[0];
     if (!file) return;
     try {
-      form.show(JSON.parse(await file.text()));
-      $('import-listing').hidden = true;
-      schedule();
+      await openJob(JSON.parse(await file.text()), file.name);
     } catch (err) {
       showFailure(new Error(`${file.name}: ${err.message}`));
     }
     e.target.value = '';
+  });
+
+  $('share').addEventListener('click', async () => {
+    const { url, left } = await shareLink(form.value(), `${location.origin}${location.pathname}`);
+    status.link = { url, left };
+    let copied = false;
+    try {
+      await navigator.clipboard.writeText(url);
+      copied = true;
+    } catch {
+      // No clipboard (an insecure origin, a denied permission): the link is shown to copy.
+    }
+    const field = $('share-url');
+    field.value = url;
+    field.hidden = false;
+    field.select();
+    const send = left.length ? ` It leaves out ${left.map((f) => f.name).join(', ')} (too large for a link): send ${left.length > 1 ? 'them' : 'it'} beside the link.` : '';
+    $('share-note').textContent = `${copied ? 'Link copied' : 'Copy the link below'} (${url.length.toLocaleString('en-US')} characters).${send}`;
   });
 
   bindImport((job, listing) => {
@@ -915,11 +942,35 @@ async function main() {
     schedule();
   });
 
-  form.show(JSON.parse(default_job()));
-  plan();
+  /** The job the address carries (`#job=…` or `?job=URL`), else the default job. */
+  const openLocation = async () => {
+    let carried;
+    try {
+      carried = await jobFromLocation();
+    } catch (e) {
+      form.show(JSON.parse(default_job()));
+      status.error = e.message;
+      setState('error');
+      $('error').textContent = `The link cannot be opened: ${e.message}.\nThe form shows the default job, not planned.`;
+      return;
+    }
+    if (!carried) {
+      form.show(JSON.parse(default_job()));
+      plan();
+      return;
+    }
+    await openJob(carried.job, carried.source === 'link' ? 'the link' : carried.source);
+  };
+  window.addEventListener('hashchange', openLocation);
+  await openLocation();
+  offlineCopy(status, (text) => {
+    $('offline').textContent = text;
+    $('offline').hidden = false;
+  });
 }
 
-main().catch((e) => {
+const started = new URLSearchParams(location.search).has('embed') ? import('./embed-page.js').then((m) => m.startEmbed()) : main();
+started.catch((e) => {
   status.error = String(e.message || e);
   setState('error');
   document.getElementById('error').textContent = `The page failed to start: ${status.error}`;

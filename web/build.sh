@@ -23,6 +23,29 @@ tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 wasm-bindgen --target web --out-dir "$tmp" "$CARGO_TARGET_DIR/wasm32-unknown-unknown/release/spiralcam_web.wasm"
 mkdir -p "$out"
-rm -f "$out"/spiralcam_web*
+rm -f "$out"/spiralcam_web* "$out"/spiralcam.js "$out"/spiralcam.d.ts "$out"/spiralcam-worker.js "$out"/package.json
 cp "$tmp"/* "$out"/
+# The JavaScript API (README, "Use it from JavaScript") and the package's manifest, so pkg/ can
+# be vendored or published as an npm package as it is.
+cp "$root"/web/package/spiralcam.js "$root"/web/package/spiralcam-worker.js "$root"/web/package/spiralcam.d.ts "$out"/
+version="$(sed -n 's/^version *= *"\(.*\)"/\1/p' "$root/Cargo.toml" | head -n 1)"
+cat >"$out/package.json" <<JSON
+{
+  "name": "spiralcam",
+  "version": "$version",
+  "description": "Spiral tool paths for fast and slow tool servo diamond turning of freeform optics (WebAssembly)",
+  "license": "MIT",
+  "type": "module",
+  "main": "./spiralcam.js",
+  "module": "./spiralcam.js",
+  "types": "./spiralcam.d.ts",
+  "exports": {
+    ".": { "types": "./spiralcam.d.ts", "default": "./spiralcam.js" },
+    "./wasm": { "types": "./spiralcam_web.d.ts", "default": "./spiralcam_web.js" },
+    "./spiralcam_web_bg.wasm": "./spiralcam_web_bg.wasm"
+  },
+  "files": ["spiralcam.js", "spiralcam.d.ts", "spiralcam-worker.js", "spiralcam_web.js", "spiralcam_web.d.ts", "spiralcam_web_bg.wasm", "spiralcam_web_bg.wasm.d.ts"],
+  "sideEffects": false
+}
+JSON
 ls -l "$out" >&2

@@ -461,6 +461,17 @@ function number(text) {
   return text.trim() === '' ? NaN : Number(text);
 }
 
+/** What is wrong with the text typed in the number field at `path`, before the core sees it:
+ * a decimal comma ("use a point: 0.5") or text that is no number; null when it reads (a blank
+ * is left to the core, which knows whether the field is optional). */
+export function numberProblem(path, text) {
+  const t = text.trim();
+  if (t === '' || Number.isFinite(Number(t))) return null;
+  if (/^[+-]?(\d+,\d*|\d*,\d+)([eE][+-]?\d+)?$/.test(t)) return `${path} = ${t}: a decimal comma; use a point: ${t.replace(',', '.')}`;
+  if (Number.isNaN(Number(t))) return `${path} = ${t}: not a number`;
+  return null;
+}
+
 function el(tag, attrs = {}, ...children) {
   const e = document.createElement(tag);
   for (const [k, v] of Object.entries(attrs)) {
@@ -514,6 +525,8 @@ export class JobForm {
     this.onChange = onChange;
     this.machinePresets = machinePresets;
     this.job = null;
+    /** Problems of the text typed in number fields, by job path (`numberProblem`). */
+    this.typed = new Map();
     /** The servo's limits last shown, restored when it is switched off and on again. */
     this.lastFts = null;
     root.addEventListener('input', (e) => this.edited(e));
@@ -524,6 +537,7 @@ export class JobForm {
   /** Shows `job` (a plain object as in the job JSON). */
   show(job) {
     this.job = structuredClone(job);
+    this.typed.clear();
     // A focused field removed here fires its "change" as it goes: that is no edit.
     this.rebuilding = true;
     this.root.replaceChildren();
@@ -817,7 +831,9 @@ export class JobForm {
       if (!file) return;
       const key = t.dataset.field.split('.').pop();
       file.text().then((text) => {
-        this.job.surface[key] = { text };
+        // A file a link or a job named by path keeps its name (reports and headers show it).
+        const path = this.job.surface[key]?.path;
+        this.job.surface[key] = path ? { path, text } : { text };
         this.show(this.job);
         this.root.querySelector(`[data-field="${t.dataset.field}"]`)?.closest('.row')
           ?.querySelector('.file-state')?.replaceChildren(loaded(file.name, text));
@@ -857,6 +873,11 @@ export class JobForm {
   /** Reads one control into the job. */
   read(t) {
     const path = t.dataset.field;
+    if (['number', 'radius-value', 'coefficient', 'term'].includes(t.dataset.kind)) {
+      const problem = numberProblem(path, t.value);
+      if (problem) this.typed.set(path, problem);
+      else this.typed.delete(path);
+    }
     switch (t.dataset.kind) {
       case 'text': set(this.job, path, t.dataset.optional && t.value.trim() === '' ? undefined : t.value); break;
       case 'choice': set(this.job, path, t.dataset.optional && t.value === '' ? undefined : t.value); break;
@@ -916,6 +937,12 @@ export class JobForm {
     }
     this.show(this.job);
     this.onChange();
+  }
+
+  /** The first problem of the text typed in a number field, or null: the job is not planned
+   * while there is one. */
+  typedProblem() {
+    return this.typed.values().next().value ?? null;
   }
 
   /** The job as it stands. */

@@ -16,6 +16,7 @@ TYPES = {
     ".wasm": "application/wasm",
     ".png": "image/png",
     ".svg": "image/svg+xml",
+    ".webmanifest": "application/manifest+json",
 }
 
 

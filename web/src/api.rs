@@ -14,6 +14,7 @@
 use spiralcam::analysis::Analysis;
 use spiralcam::analysis::power_map::PowerMap;
 use spiralcam::display::{DisplayPath, SurfaceMesh};
+use spiralcam::field::short;
 use spiralcam::job::Job;
 use spiralcam::nc::program::ChildFiles;
 use spiralcam::plan::{Limits, Planner, Sinks};
@@ -46,7 +47,16 @@ pub fn version() -> String {
 }
 
 /// The job of a JavaScript object, read with the core's field checks.
+/// The job's `format` is checked first: a job from a newer spiralcam is refused naming its
+/// version, not the first field this version does not know.
 pub(crate) fn parse_job(job: JsValue) -> Result<Job, JsError> {
+    let format =
+        js_sys::Reflect::get(&job, &JsValue::from_str("format")).unwrap_or(JsValue::UNDEFINED);
+    if !format.is_undefined() {
+        let value: serde_json::Value = serde_wasm_bindgen::from_value(format)
+            .unwrap_or_else(|_| serde_json::Value::String("an object".into()));
+        spiralcam::job::format::check_format(&value).map_err(|e| JsError::new(&e.to_string()))?;
+    }
     Job::deserialize_from(serde_wasm_bindgen::Deserializer::from(job))
         .map_err(|e| JsError::new(&e.to_string()))
 }
@@ -495,4 +505,49 @@ pub fn check_job(job: JsValue) -> Result<(), JsError> {
     Planner::new(&parse_job(job)?)
         .map(|_| ())
         .map_err(|e| JsError::new(&e.to_string()))
+}
+
+/// The most points [`sag`] evaluates in one call (80 MB of coordinates).
+pub const MAX_SAG_POINTS: usize = 5_000_000;
+
+/// The job's surface height z (mm, the spindle's frame, as `spiralcam sag` prints it) at each
+/// point of `xy` (x0, y0, x1, y1, … in mm). Throws naming the point where the surface is
+/// undefined or not finite, an odd length, or more than [`MAX_SAG_POINTS`] points.
+#[wasm_bindgen]
+pub fn sag(job: JsValue, xy: &[f64]) -> Result<Vec<f64>, JsError> {
+    if !xy.len().is_multiple_of(2) {
+        return Err(JsError::new(&format!(
+            "points: {} numbers, not pairs x, y",
+            xy.len()
+        )));
+    }
+    if xy.len() / 2 > MAX_SAG_POINTS {
+        return Err(JsError::new(&format!(
+            "points: {} points, at most {MAX_SAG_POINTS} a call",
+            xy.len() / 2
+        )));
+    }
+    let job = parse_job(job)?;
+    job.validate().map_err(|e| JsError::new(&e.to_string()))?;
+    let surface = job
+        .build_surface()
+        .map_err(|e| JsError::new(&e.to_string()))?;
+    xy.chunks_exact(2)
+        .enumerate()
+        .map(|(i, p)| {
+            let at = || format!("point {i} (x = {}, y = {})", short(p[0]), short(p[1]));
+            let z = surface
+                .local(p[0], p[1])
+                .map_err(|e| JsError::new(&format!("{}: {e}", at())))?
+                .z;
+            if z.is_finite() {
+                Ok(z)
+            } else {
+                Err(JsError::new(&format!(
+                    "{}: the surface is not finite",
+                    at()
+                )))
+            }
+        })
+        .collect()
 }

@@ -363,6 +363,8 @@ pub fn job_from_design(
     };
     let diameter = diameter(design, s, choice)?;
     let mut job = Job::default_job();
+    // A job spiralcam writes says which format it is in.
+    job.format = Some(crate::job::format::FORMAT);
     job.name = job_name(&design.file, s.number);
     job.part.diameter_mm = diameter.0;
     job.part.normal_axis_at_mm = None;

@@ -13,6 +13,7 @@
 //! - [`strategy`]: `strategy` (feed, sampling, direction, compensation, split);
 //! - [`machine`]: `machine` (spindle, slides, servo, block rate) and the example presets;
 //! - [`output`]: `output` (dialect, decimals, signs, feed mode, approach);
+//! - [`format`](mod@format): `format` (the version of the job format; only 1 is read);
 //! - [`fts_grid`]: `output.fts_grid` (the servo's gridded table: tolerance, counts, motors);
 //! - [`program`]: `program` (set-up words, heights, approach, passes, loop, child programs);
 //! - [`cut`]: `part.cut` (the optic or a mould, the design's frame or turned 180° about Y);
@@ -20,6 +21,7 @@
 
 pub mod cut;
 pub mod design;
+pub mod format;
 pub mod fts_grid;
 pub mod machine;
 pub mod output;
@@ -50,6 +52,9 @@ pub const DEFAULT_JOB: &str = include_str!("../../jobs/lens-array-paper004.json"
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Job {
+    /// The version of the job format ([`format`](mod@format)): absent or 1; other values are refused.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub format: Option<u32>,
     /// Name, used in NC headers and for output file names; letters, digits, `-`, `_`, `.`.
     pub name: String,
     /// The blank.
@@ -161,6 +166,8 @@ impl Job {
                 "must be a JSON object {{…}}, not {kind}"
             )));
         }
+        // The version first: a newer job may hold fields this version does not know.
+        format::FormatHeader::check(text)?;
         Self::deserialize_from(&mut serde_json::Deserializer::from_str(text))
     }
 
@@ -171,7 +178,11 @@ impl Job {
     where
         D::Error: std::fmt::Display,
     {
-        serde_path_to_error::deserialize(de).map_err(syntax)
+        let job: Self = serde_path_to_error::deserialize(de).map_err(syntax)?;
+        if let Some(v) = job.format {
+            format::check_format(&serde_json::Value::from(v))?;
+        }
+        Ok(job)
     }
 
     /// The page's default job: paper 004's lens array.

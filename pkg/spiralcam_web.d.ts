@@ -313,6 +313,13 @@ export function plan(job: any, progress: Function): Planned;
 export function power_maps(job: any, size: number): PowerMaps | undefined;
 
 /**
+ * The job's surface height z (mm, the spindle's frame, as `spiralcam sag` prints it) at each
+ * point of `xy` (x0, y0, x1, y1, … in mm). Throws naming the point where the surface is
+ * undefined or not finite, an odd length, or more than [`MAX_SAG_POINTS`] points.
+ */
+export function sag(job: any, xy: Float64Array | number[]): Float64Array;
+
+/**
  * The offsets a test cut of `job` shows (`params`: the JSON of `spiralcam setup --params`),
  * as JSON.
  */
@@ -380,6 +387,7 @@ export interface InitOutput {
     readonly powermaps_mean_d: (a: number) => [number, number];
     readonly powermaps_size: (a: number) => number;
     readonly powermaps_step_mm: (a: number) => number;
+    readonly sag: (a: any, b: number, c: number) => [number, number, number, number];
     readonly setup_offsets: (a: any, b: number, c: number) => [number, number, number, number];
     readonly verified_deviation_um: (a: number) => [number, number];
     readonly verified_report: (a: number) => [number, number];
@@ -399,8 +407,8 @@ export interface InitOutput {
     readonly viewer_z_exaggeration: (a: number) => number;
     readonly viewer_zoom: (a: number, b: number) => void;
     readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_62: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_63: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_64: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h6a9a4c771fb11aad: (a: number, b: number, c: any, d: any) => void;
     readonly wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h9a591c57c7a39bce: (a: number, b: number, c: any) => void;

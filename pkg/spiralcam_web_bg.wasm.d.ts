@@ -47,6 +47,7 @@ export const powermaps_cylinder_d: (a: number) => [number, number];
 export const powermaps_mean_d: (a: number) => [number, number];
 export const powermaps_size: (a: number) => number;
 export const powermaps_step_mm: (a: number) => number;
+export const sag: (a: any, b: number, c: number) => [number, number, number, number];
 export const setup_offsets: (a: any, b: number, c: number) => [number, number, number, number];
 export const verified_deviation_um: (a: number) => [number, number];
 export const verified_report: (a: number) => [number, number];
@@ -66,8 +67,8 @@ export const viewer_set_surface: (a: number, b: number, c: number, d: number, e:
 export const viewer_z_exaggeration: (a: number) => number;
 export const viewer_zoom: (a: number, b: number) => void;
 export const wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87: (a: number, b: number, c: any) => [number, number];
-export const wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_62: (a: number, b: number, c: any) => [number, number];
 export const wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_63: (a: number, b: number, c: any) => [number, number];
+export const wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_64: (a: number, b: number, c: any) => [number, number];
 export const wasm_bindgen__convert__closures_____invoke__h6a9a4c771fb11aad: (a: number, b: number, c: any, d: any) => void;
 export const wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c: (a: number, b: number, c: any) => [number, number];
 export const wasm_bindgen__convert__closures_____invoke__h9a591c57c7a39bce: (a: number, b: number, c: any) => void;

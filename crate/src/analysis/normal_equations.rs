@@ -7,11 +7,14 @@
 //! treated as zero. The columns are scaled to unit length before either (Jacobi scaling), so
 //! unknowns of different units (µm of piston, µrad of tilt) do not spoil the conditioning.
 
-use crate::parallel::{fill_chunks, workers};
+use crate::parallel::fill_chunks;
 use nalgebra::{DMatrix, DVector};
 
 /// The least work (rows × k²) summed on several threads.
 const MIN_PARALLEL_WORK: usize = 1 << 16;
+
+/// The parts a larger sum is split into (spread over the threads).
+const PARTS: usize = 16;
 
 /// Relative threshold of the singular values kept by the fallback solve.
 pub const SINGULAR: f64 = 1e-12;
@@ -34,13 +37,15 @@ impl NormalEquations {
         row: impl Fn(usize, &mut [f64], &mut f64) -> Result<(), E> + Sync,
     ) -> Result<Self, E> {
         // Small sums (a local fit of a few points, called per grid node from threads already)
-        // are done here: a thread costs more than they do.
-        let threads = if count * k * k < MIN_PARALLEL_WORK {
+        // are one part, summed here: a thread costs more than they do. Larger ones are summed
+        // in a fixed number of parts, whatever the number of threads, so that the result is the
+        // same on every machine and in the page.
+        let parts = if count * k * k < MIN_PARALLEL_WORK {
             1
         } else {
-            workers().max(1)
+            PARTS
         };
-        let mut parts = vec![(vec![0.0; k * k], vec![0.0; k]); threads];
+        let mut parts = vec![(vec![0.0; k * k], vec![0.0; k]); parts];
         let per = count.div_ceil(parts.len()).max(1);
         fill_chunks(&mut parts, |first, out| {
             let mut a = vec![0.0; k];

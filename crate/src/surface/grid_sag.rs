@@ -68,10 +68,13 @@ pub struct GridSag {
     /// Position of the first point (i = j = 0), mm.
     x0: f64,
     y0: f64,
-    /// Coefficients per cell, `cells[j·(nx − 1) + i]`.
+    /// 1/Δx and 1/Δy, mm⁻¹ (an evaluation multiplies: no division on the lookup's path).
+    inv_dx: f64,
+    inv_dy: f64,
+    /// Coefficients per cell, `cells[j·(nx − 1) + i]`; all infinite in a cell with a corner
+    /// without data (a valid cell's first coefficient is its corner's sag, finite), so one load
+    /// says both.
     cells: Vec<[f64; 16]>,
-    /// Whether each cell has data at its four corners.
-    cell_valid: Vec<bool>,
     missing: usize,
 }
 
@@ -143,7 +146,6 @@ impl GridSag {
         let (d, derivatives) = node_derivatives(&grid);
         let (nx, ny, dx, dy) = (grid.nx, grid.ny, grid.dx_mm, grid.dy_mm);
         let mut cells = Vec::with_capacity((nx - 1) * (ny - 1));
-        let mut cell_valid = Vec::with_capacity((nx - 1) * (ny - 1));
         for j in 0..ny - 1 {
             for i in 0..nx - 1 {
                 let corner = |a: usize, b: usize| {
@@ -154,11 +156,10 @@ impl GridSag {
                 let valid = [(0, 0), (1, 0), (0, 1), (1, 1)]
                     .iter()
                     .all(|&(a, b)| grid.nodes[(j + b) * nx + i + a].valid);
-                cell_valid.push(valid);
                 cells.push(if valid {
                     bicubic::coefficients(&[corner(0, 0), corner(1, 0), corner(0, 1), corner(1, 1)])
                 } else {
-                    [0.0; 16]
+                    [f64::INFINITY; 16]
                 });
             }
         }
@@ -170,8 +171,9 @@ impl GridSag {
             derivatives,
             x0,
             y0,
+            inv_dx: 1.0 / dx,
+            inv_dy: 1.0 / dy,
             cells,
-            cell_valid,
             missing: grid.nodes.iter().filter(|n| !n.valid).count(),
             grid,
         })
@@ -219,7 +221,8 @@ impl GridSag {
     /// `[g, g_x, g_y, g_xx, g_xy, g_yy]` of the grid part at (x, y).
     fn grid_local(&self, x: f64, y: f64) -> Result<[f64; 6], String> {
         let g = &self.grid;
-        let (t, s) = ((x - self.x0) / g.dx_mm, (y - self.y0) / g.dy_mm);
+        let (ix, iy) = (self.inv_dx, self.inv_dy);
+        let (t, s) = ((x - self.x0) * ix, (y - self.y0) * iy);
         let (last_i, last_j) = ((g.nx - 1) as f64, (g.ny - 1) as f64);
         if !(t >= -EDGE && t <= last_i + EDGE && s >= -EDGE && s <= last_j + EDGE) {
             let (x1, y1) = g.position(g.nx - 1, g.ny - 1);
@@ -228,21 +231,21 @@ impl GridSag {
                 self.x0, self.y0
             ));
         }
-        let i = (t.floor().max(0.0) as usize).min(g.nx - 2);
-        let j = (s.floor().max(0.0) as usize).min(g.ny - 2);
-        let k = j * (g.nx - 1) + i;
-        if !self.cell_valid[k] {
-            return Err(self.missing_corner(i, j));
-        }
-        let [p, pu, pv, puu, puv, pvv] = bicubic::eval(&self.cells[k], t - i as f64, s - j as f64);
-        let (dx, dy) = (g.dx_mm, g.dy_mm);
+        // Truncation is the floor for t ≥ 0; `as` saturates t in [−EDGE, 0) to 0.
+        let i = (t as usize).min(g.nx - 2);
+        let j = (s as usize).min(g.ny - 2);
+        let cell = match self.cells.get(j * (g.nx - 1) + i) {
+            Some(cell) if cell[0].is_finite() => cell,
+            _ => return Err(self.missing_corner(i, j)),
+        };
+        let [p, pu, pv, puu, puv, pvv] = bicubic::eval(cell, t - i as f64, s - j as f64);
         Ok([
             p,
-            pu / dx,
-            pv / dy,
-            puu / (dx * dx),
-            puv / (dx * dy),
-            pvv / (dy * dy),
+            pu * ix,
+            pv * iy,
+            puu * (ix * ix),
+            puv * (ix * iy),
+            pvv * (iy * iy),
         ])
     }
 }

@@ -49,27 +49,28 @@ pub fn coefficients(c: &Corners) -> [f64; 16] {
     a
 }
 
-/// `[p, p_u, p_v, p_uu, p_uv, p_vv]` of the patch `a` at (u, v).
+/// `[p, p_u, p_v, p_uu, p_uv, p_vv]` of the patch `a` at (u, v): each row's cubic in v and
+/// its two derivatives by Horner's rule, then the same in u over the rows.
 #[inline]
 pub fn eval(a: &[f64; 16], u: f64, v: f64) -> [f64; 6] {
-    let (v2, v3) = (v * v, v * v * v);
     let mut r = [0.0; 4];
     let mut rv = [0.0; 4];
     let mut rvv = [0.0; 4];
     for k in 0..4 {
-        let c = &a[4 * k..4 * k + 4];
-        r[k] = c[0] + c[1] * v + c[2] * v2 + c[3] * v3;
-        rv[k] = c[1] + 2.0 * c[2] * v + 3.0 * c[3] * v2;
-        rvv[k] = 2.0 * c[2] + 6.0 * c[3] * v;
+        let [c0, c1, c2, c3] = [a[4 * k], a[4 * k + 1], a[4 * k + 2], a[4 * k + 3]];
+        r[k] = c0 + v * (c1 + v * (c2 + v * c3));
+        rv[k] = c1 + v * (2.0 * c2 + v * (3.0 * c3));
+        rvv[k] = 2.0 * c2 + v * (6.0 * c3);
     }
-    let (u2, u3) = (u * u, u * u * u);
+    let cubic = |q: &[f64; 4]| q[0] + u * (q[1] + u * (q[2] + u * q[3]));
+    let slope = |q: &[f64; 4]| q[1] + u * (2.0 * q[2] + u * (3.0 * q[3]));
     [
-        r[0] + r[1] * u + r[2] * u2 + r[3] * u3,
-        r[1] + 2.0 * r[2] * u + 3.0 * r[3] * u2,
-        rv[0] + rv[1] * u + rv[2] * u2 + rv[3] * u3,
-        2.0 * r[2] + 6.0 * r[3] * u,
-        rv[1] + 2.0 * rv[2] * u + 3.0 * rv[3] * u2,
-        rvv[0] + rvv[1] * u + rvv[2] * u2 + rvv[3] * u3,
+        cubic(&r),
+        slope(&r),
+        cubic(&rv),
+        2.0 * r[2] + u * (6.0 * r[3]),
+        slope(&rv),
+        cubic(&rvv),
     ]
 }
 

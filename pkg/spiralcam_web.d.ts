@@ -157,7 +157,8 @@ export class Verified {
      */
     readonly size: number;
     /**
-     * The trace: x, y, z (mm) and deviation (µm) of every k-th cutting point, flat.
+     * The trace: x, y, z (mm) and deviation (µm) of every k-th cutting point of the last
+     * pass, in order, flat.
      */
     readonly trace: Float32Array;
 }
@@ -200,6 +201,15 @@ export class Viewer {
      */
     resize(css_width: number, css_height: number, device_pixel_ratio: number): void;
     /**
+     * A verified program's path, drawn instead of the planned path until cleared: `xyz` its
+     * points in order (mm, a line strip), `deviation_nm` each point's deviation from the
+     * design (nm), coloured on the height scale's colours from `lo_nm` (bottom) to `hi_nm`
+     * (top) while the surface is drawn grey. Fewer than two points, or lengths that disagree
+     * (reported on the console), go back to the planned path and the height colours. The
+     * placement stays the surface's.
+     */
+    set_deviation_path(xyz: Float32Array | number[], deviation_nm: Float32Array | number[], lo_nm: number, hi_nm: number): void;
+    /**
      * The tool path as line segments, two xyz points (mm) each, lying on the surface; drawn
      * on top in a contrasting colour.
      */
@@ -211,6 +221,10 @@ export class Viewer {
      * clears the surface. A new part (other extent) resets the view.
      */
     set_surface(positions: Float32Array | number[], normals: Float32Array | number[], indices: Uint32Array | number[], z_min: number, z_max: number): void;
+    /**
+     * Whether a verified program's path is shown (see [`Viewer::set_deviation_path`]).
+     */
+    shows_deviation(): boolean;
     /**
      * Vertical exaggeration in use: heights are drawn this many times their true size.
      */
@@ -402,13 +416,15 @@ export interface InitOutput {
     readonly viewer_render: (a: number) => [number, number];
     readonly viewer_reset_view: (a: number) => void;
     readonly viewer_resize: (a: number, b: number, c: number, d: number) => void;
+    readonly viewer_set_deviation_path: (a: number, b: number, c: number, d: number, e: number, f: number, g: number) => void;
     readonly viewer_set_path: (a: number, b: number, c: number) => void;
     readonly viewer_set_surface: (a: number, b: number, c: number, d: number, e: number, f: number, g: number, h: number, i: number) => void;
+    readonly viewer_shows_deviation: (a: number) => number;
     readonly viewer_z_exaggeration: (a: number) => number;
     readonly viewer_zoom: (a: number, b: number) => void;
     readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_63: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_64: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_65: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_66: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h6a9a4c771fb11aad: (a: number, b: number, c: any, d: any) => void;
     readonly wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h9a591c57c7a39bce: (a: number, b: number, c: any) => void;

@@ -425,7 +425,8 @@ export class Verified {
         return ret >>> 0;
     }
     /**
-     * The trace: x, y, z (mm) and deviation (µm) of every k-th cutting point, flat.
+     * The trace: x, y, z (mm) and deviation (µm) of every k-th cutting point of the last
+     * pass, in order, flat.
      * @returns {Float32Array}
      */
     get trace() {
@@ -525,6 +526,34 @@ export class Viewer {
         wasm.viewer_resize(this.__wbg_ptr, css_width, css_height, device_pixel_ratio);
     }
     /**
+     * A verified program's path, drawn instead of the planned path until cleared: `xyz` its
+     * points in order (mm, a line strip), `deviation_nm` each point's deviation from the
+     * design (nm), coloured on the height scale's colours from `lo_nm` (bottom) to `hi_nm`
+     * (top) while the surface is drawn grey. Fewer than two points, or lengths that disagree
+     * (reported on the console), go back to the planned path and the height colours. The
+     * placement stays the surface's.
+     * @param {Float32Array | number[]} xyz
+     * @param {Float32Array | number[]} deviation_nm
+     * @param {number} lo_nm
+     * @param {number} hi_nm
+     */
+    set_deviation_path(xyz, deviation_nm, lo_nm, hi_nm) {
+        const val3 = +lo_nm;
+        const val4 = +hi_nm;
+        let ptr0, len0, ptr1, len1;
+        try {
+            ptr0 = passArrayF32ToWasm0(xyz, wasm.__wbindgen_malloc);
+            len0 = WASM_VECTOR_LEN;
+            ptr1 = passArrayF32ToWasm0(deviation_nm, wasm.__wbindgen_malloc);
+            len1 = WASM_VECTOR_LEN;
+        } catch (e) {
+            if (ptr1) { wasm.__wbindgen_free(ptr1, len1 * 4, 4); }
+            if (ptr0) { wasm.__wbindgen_free(ptr0, len0 * 4, 4); }
+            throw e;
+        }
+        wasm.viewer_set_deviation_path(this.__wbg_ptr, ptr0, len0, ptr1, len1, val3, val4);
+    }
+    /**
      * The tool path as line segments, two xyz points (mm) each, lying on the surface; drawn
      * on top in a contrasting colour.
      * @param {Float32Array | number[]} xyz
@@ -563,6 +592,14 @@ export class Viewer {
             throw e;
         }
         wasm.viewer_set_surface(this.__wbg_ptr, ptr0, len0, ptr1, len1, ptr2, len2, val4, val5);
+    }
+    /**
+     * Whether a verified program's path is shown (see [`Viewer::set_deviation_path`]).
+     * @returns {boolean}
+     */
+    shows_deviation() {
+        const ret = wasm.viewer_shows_deviation(this.__wbg_ptr);
+        return ret !== 0;
     }
     /**
      * Vertical exaggeration in use: heights are drawn this many times their true size.
@@ -2991,12 +3028,12 @@ function __wbg_get_imports() {
         },
         __wbindgen_generic_0000000000000004: function(arg0, arg1) {
             // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("any")], shim_idx: 347, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_63);
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_65);
             return ret;
         },
         __wbindgen_generic_0000000000000005: function(arg0, arg1) {
             // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("undefined")], shim_idx: 347, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_64);
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_66);
             return ret;
         },
         __wbindgen_generic_0000000000000006: function(arg0) {
@@ -3087,15 +3124,15 @@ function wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87(arg0, arg
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_63(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_63(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_65(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_65(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_64(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_64(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_66(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_66(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }

@@ -2,8 +2,9 @@
 // the machine dynamics (split verdict, axis checks, 2-D plots) and the downloads; the measured
 // panel (a measured file corrected against the job: residual before and after, the corrected
 // job and its program), the set-up panel (a test cut turned into offsets) and Open NC… (a
-// program verified against the job: its report and the last pass's deviation map in nm; the
-// program's path is not drawn in the 3-D view). Planning never
+// program verified against the job: its report, the last pass's deviation map in nm, and the
+// last pass drawn in the 3-D view over a grey surface, coloured by deviation with its legend
+// in nm, until the next plan or the box is unticked). Planning never
 // runs on this thread, so the page stays responsive; a new
 // edit or Cancel terminates the worker and starts a fresh one. The page's state is mirrored on
 // `document.body.dataset.state` ("loading", "planning", "done", "analysing", "analysed",
@@ -535,16 +536,50 @@ function setupParams() {
   return JSON.stringify(p);
 }
 
-/** The colour legend beside the view. */
-function showLegend(zMin, zMax, exaggeration, revolutionStep, passNote = '') {
-  const ticks = $('legend-ticks');
+/** Five ticks from `hi` (top) to `lo` (bottom), each `label(value)`. */
+function legendTicks(lo, hi, label) {
   const n = 5;
-  ticks.replaceChildren(...Array.from({ length: n }, (_, i) => {
-    const z = zMax - ((zMax - zMin) * i) / (n - 1);
-    return Object.assign(document.createElement('span'), { textContent: `${fmt(z * 1000, 3)} µm` });
+  $('legend-ticks').replaceChildren(...Array.from({ length: n }, (_, i) => {
+    const v = hi - ((hi - lo) * i) / (n - 1);
+    return Object.assign(document.createElement('span'), { textContent: label(v) });
   }));
+}
+
+/** The colour legend beside the view: heights in µm. */
+function showLegend(zMin, zMax, exaggeration, revolutionStep, passNote = '') {
+  legendTicks(zMin, zMax, (z) => `${fmt(z * 1000, 3)} µm`);
+  $('legend').setAttribute('aria-label', 'height colour scale');
   $('exaggeration').textContent = `Z × ${fmt(exaggeration, 1)}`;
   $('path-note').textContent = (revolutionStep > 1 ? `path: every ${revolutionStep}th revolution shown` : 'path: every revolution shown') + passNote;
+}
+
+/** The colour scale of a verified program's deviation, nm: the last pass's extremes (from
+ * every point, not only those drawn), widened to 1 nm when flatter. */
+function deviationRange(d) {
+  let [lo, hi] = [1000 * d.min, 1000 * d.max];
+  if (!(hi - lo >= 1)) [lo, hi] = [(lo + hi) / 2 - 0.5, (lo + hi) / 2 + 0.5];
+  return [lo, hi];
+}
+
+/** A verified program's last pass in the 3-D view (`trace`: x, y, z mm and deviation µm of
+ * every k-th point), coloured by deviation with the legend in nm; returns what was drawn. */
+function showProgramPath(viewer, m) {
+  const n = m.trace.length / 4;
+  const xyz = new Float32Array(3 * n);
+  const nm = new Float32Array(n);
+  for (let i = 0; i < n; i++) {
+    xyz.set(m.trace.subarray(4 * i, 4 * i + 3), 3 * i);
+    nm[i] = 1000 * m.trace[4 * i + 3];
+  }
+  const [lo, hi] = deviationRange(m.report.deviation_um);
+  viewer.set_deviation_path(xyz, nm, lo, hi);
+  if (!viewer.shows_deviation()) return null;
+  legendTicks(lo, hi, (v) => `${fmt(v, 1)} nm`);
+  $('legend').setAttribute('aria-label', 'deviation colour scale, nm');
+  $('exaggeration').textContent = `Z × ${fmt(viewer.z_exaggeration(), 1)} · colour: deviation`;
+  const passes = m.report.pass_count;
+  $('path-note').textContent = `program: ${passes > 1 ? `last of ${fmt(passes, 0)} passes` : 'its pass'}, ${fmt(n, 0)} of ${fmt(m.report.deviation_um.points, 0)} cutting points drawn, coloured by deviation from the design (positive: material left)`;
+  return { points: n, lo_nm: lo, hi_nm: hi };
 }
 
 /** Most passes drawn in the 3-D view. */
@@ -636,6 +671,23 @@ async function main() {
   const progress = $('progress');
   const progressText = $('progress-text');
   let planned = null;
+  /** The plan drawn in the view (its legend), and the verified program drawn over it. */
+  let shownPlan = null;
+  let verified = null;
+  /** Draws the verified program `m` over the surface (while its box is ticked), or the plan's
+   * path and height legend when `m` is null. */
+  const showProgram = (m) => {
+    verified = m;
+    $('verify-show').hidden = !m;
+    status.programDrawn = null;
+    if (!viewer) return;
+    if (m && $('verify-show-path').checked) status.programDrawn = showProgramPath(viewer, m);
+    if (!status.programDrawn) {
+      viewer.set_deviation_path(new Float32Array(0), new Float32Array(0), 0, 0);
+      if (shownPlan) showLegend(shownPlan.zMin, shownPlan.zMax, viewer.z_exaggeration(), shownPlan.revolutionStep, shownPlan.note);
+    }
+    redraw();
+  };
   let working = false;
   let form = null;
   const busy = (on) => {
@@ -718,8 +770,8 @@ async function main() {
         viewer.set_surface(m.positions, m.normals, m.indices, m.zMin, m.zMax);
         const drawn = passPaths(m.path, m.report.program);
         viewer.set_path(drawn.path);
-        showLegend(m.zMin, m.zMax, viewer.z_exaggeration(), m.revolutionStep, drawn.note);
-        redraw();
+        shownPlan = { zMin: m.zMin, zMax: m.zMax, revolutionStep: m.revolutionStep, note: drawn.note };
+        showProgram(null);
       }
       setState('done');
     } catch (e) {
@@ -829,11 +881,13 @@ async function main() {
       const extra = { name: files[0].name, text: texts[0], names: files.slice(1).map((f) => f.name), texts: texts.slice(1) };
       const m = await worker.run('verify', form.value(), extra);
       showVerification(m, stops);
+      showProgram(m);
       $('plan-time').textContent = `verified in ${fmt((performance.now() - started) / 1000, 2)} s`;
       status.verification = m.report;
       setState('verified');
     } catch (e) {
       showVerification(null, stops);
+      showProgram(null);
       if (!e.cancelled) {
         $('verify-error').textContent = e.message;
         status.error = e.message;
@@ -844,6 +898,7 @@ async function main() {
       $('nc-file').value = '';
     }
   });
+  $('verify-show-path').addEventListener('change', () => showProgram(verified));
   $('measured-file').addEventListener('change', runCorrection);
   $('correct').addEventListener('click', runCorrection);
   $('download-corrected').addEventListener('click', () => {

@@ -234,6 +234,51 @@ fn a_fanuc_while_loop_with_a_g52_stock_and_a_gouging_block() {
 }
 
 #[test]
+fn the_display_trace_is_every_kth_point_of_the_last_pass() {
+    let job = sphere_job("moore", 1);
+    // Two passes, 5 µm then 0 µm stock; block 96 of every pass 3 µm low.
+    let blocks = sphere_blocks("", true, 1.0, |k| if k == 96 { -0.003 } else { 0.0 });
+    let text = format!(
+        "G71 G18 G90 G94\n#100 = 2\n#101 = 0.005\n#102 = 0.010\n#103 = 0\n\
+         WHILE [#103 LT #100] DO 1\n#102 = [#102 - #101]\n\
+         G52 Z[#102]\nG0 Z1.0\nG0 X4.0 C0\nG1 Z{:.6} F20\nG93 F0.001\n{blocks}G94\nG0 Z1.0\n\
+         #103 = [#103 + 1]\nEND 1\nG52 Z0\nM30\n",
+        sphere_tip(4.0)
+    );
+    let path = ToolPath::new(&job).expect("tool path");
+    let mut open = || {
+        Ok(Reader::new(
+            Program::from_text("trace.nc", &text),
+            ReaderOptions::default(),
+        ))
+    };
+    // 720 points in the last pass, at most 100 drawn: every 8th, 90 points.
+    let settings = VerifySettings {
+        trace_points: 100,
+        ..VerifySettings::default()
+    };
+    let v = verify(&path, &mut open, &settings, &mut ignore).expect("verify");
+    assert_eq!(v.pass_count, 2);
+    assert_eq!(v.trace.len(), 90);
+    for (i, p) in v.trace.iter().enumerate() {
+        // Block k of the spiral: ρ = 4 − 0.2·k/36, θ = 10k°, the tip on the offset sphere.
+        let k = 8 * (i + 1);
+        let rho = 4.0 - k as f64 * 0.2 / 36.0;
+        let theta = (k as f64 * 10.0).to_radians();
+        let lift_um = if k == 96 { -3.0 } else { 0.0 };
+        assert!((p.x - rho * theta.cos()).abs() < 1e-6, "{i}: {p:?}");
+        assert!((p.y - rho * theta.sin()).abs() < 1e-6, "{i}: {p:?}");
+        let z = sphere_tip(rho) + lift_um * 1e-3;
+        assert!((p.z - z).abs() <= 0.5e-6 + 1e-12, "{i}: {p:?} against {z}");
+        // The last pass has no stock: the deviation is the lift alone.
+        assert!(
+            (p.deviation_um - lift_um).abs() <= HAND_TOL_UM,
+            "{i}: {p:?}"
+        );
+    }
+}
+
+#[test]
 fn a_linuxcnc_repeat_with_g52_and_a_collision_in_the_link() {
     let job = sphere_job("iso", 1);
     let blocks = sphere_blocks("G1 ", false, 1.0, |_| 0.0);

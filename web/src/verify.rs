@@ -1,8 +1,9 @@
 //! The page's "Open NC…": a program (and the child programs chosen with it) verified against
 //! the job in the worker ([`spiralcam::analysis::verify`], the command line's
-//! `spiralcam verify`), with progress and cancel. The page shows the report beside the plan's
-//! and draws the last pass's deviation as a map over the part with a legend in nm; the trace
-//! of the program's cutting points (every k-th, at most 200 000) comes back for plots.
+//! `spiralcam verify`), with progress and cancel. The page shows the report beside the plan's,
+//! draws the last pass's deviation as a map over the part with a legend in nm, and draws the
+//! last pass itself (its trace: every k-th cutting point, at most 200 000) over the surface in
+//! the 3-D view, coloured by deviation ([`crate::viewer::Viewer::set_deviation_path`]).
 
 use crate::api::{parse_job, reporter};
 use spiralcam::analysis::verify::{Verification, VerifySettings, verify};
@@ -46,7 +47,8 @@ impl Verified {
             .collect()
     }
 
-    /// The trace: x, y, z (mm) and deviation (µm) of every k-th cutting point, flat.
+    /// The trace: x, y, z (mm) and deviation (µm) of every k-th cutting point of the last
+    /// pass, in order, flat.
     #[wasm_bindgen(getter)]
     pub fn trace(&self) -> Vec<f32> {
         self.verification

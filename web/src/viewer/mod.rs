@@ -1,6 +1,8 @@
 //! The 3-D view on the page's canvas, drawn with wgpu: the surface as a lit, colour-mapped
 //! triangle mesh ([`crate::colormap`], Lambert + ambient shading with a light fixed to the
-//! camera) and the tool path as a line strip on top, under an orbit camera ([`camera`]). Optical
+//! camera) and the tool path as line segments on top, under an orbit camera ([`camera`]); or,
+//! while a verified program is shown, the surface grey and the program's path as a line strip
+//! coloured by its deviation from the design on the same colour scale. Optical
 //! surfaces are nearly flat, so heights are exaggerated until their range is about 15 % of the
 //! part diameter. The skeleton follows wgpu's examples (`examples/features/src/framework.rs`):
 //! WebGPU when `navigator.gpu` yields an adapter, else WebGL2; the surface is created from the
@@ -30,8 +32,8 @@ const CLEAR: wgpu::Color = wgpu::Color {
 const PATH_COLOR: [f32; 4] = [1.0, 0.25, 0.3, 1.0];
 /// Depth buffer format (renderable and multisampled on WebGPU and WebGL2).
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-/// Size of the `Uniforms` struct in shader.wgsl: a mat4 and five vec4 (bytes).
-const UNIFORM_SIZE: u64 = 64 + 5 * 16;
+/// Size of the `Uniforms` struct in shader.wgsl: a mat4 and six vec4 (bytes).
+const UNIFORM_SIZE: u64 = 64 + 6 * 16;
 
 /// Little-endian bytes of a float slice, the layout GPU buffers expect.
 fn f32_bytes(values: &[f32]) -> Vec<u8> {
@@ -104,6 +106,16 @@ struct Mesh {
     index_count: u32,
 }
 
+/// A verified program's path: positions and each point's deviation, and the colour scale's
+/// range.
+struct DeviationPath {
+    positions: wgpu::Buffer,
+    deviations: wgpu::Buffer,
+    count: u32,
+    lo_nm: f32,
+    hi_nm: f32,
+}
+
 /// The drawing-buffer-sized attachments: depth and, with MSAA, the multisampled colour.
 struct Targets {
     depth: wgpu::TextureView,
@@ -122,10 +134,13 @@ pub struct Viewer {
     targets: Targets,
     surface_pipeline: wgpu::RenderPipeline,
     path_pipeline: wgpu::RenderPipeline,
+    deviation_pipeline: wgpu::RenderPipeline,
     uniforms: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     mesh: Option<Mesh>,
     path: Option<(wgpu::Buffer, u32)>,
+    /// A verified program's path, drawn instead of `path` while present.
+    deviation_path: Option<DeviationPath>,
     /// Placement from the surface, else from the path.
     placement: Option<Placement>,
     path_placement: Option<Placement>,
@@ -258,6 +273,7 @@ impl Viewer {
         };
         let surface_pipeline = pipelines.surface();
         let path_pipeline = pipelines.path();
+        let deviation_pipeline = pipelines.deviation();
         let targets = make_targets(&device, &config, sample_count);
 
         let mut viewer = Viewer {
@@ -270,10 +286,12 @@ impl Viewer {
             targets,
             surface_pipeline,
             path_pipeline,
+            deviation_pipeline,
             uniforms,
             bind_group,
             mesh: None,
             path: None,
+            deviation_path: None,
             placement: None,
             path_placement: None,
             camera: OrbitCamera::default(),
@@ -374,6 +392,58 @@ impl Viewer {
         if self.mesh.is_none() {
             self.place(self.path_placement);
         }
+    }
+
+    /// A verified program's path, drawn instead of the planned path until cleared: `xyz` its
+    /// points in order (mm, a line strip), `deviation_nm` each point's deviation from the
+    /// design (nm), coloured on the height scale's colours from `lo_nm` (bottom) to `hi_nm`
+    /// (top) while the surface is drawn grey. Fewer than two points, or lengths that disagree
+    /// (reported on the console), go back to the planned path and the height colours. The
+    /// placement stays the surface's.
+    pub fn set_deviation_path(
+        &mut self,
+        xyz: &[f32],
+        deviation_nm: &[f32],
+        lo_nm: f64,
+        hi_nm: f64,
+    ) {
+        self.deviation_path = None;
+        let count = xyz.len() / 3;
+        if xyz.len() != 3 * deviation_nm.len() {
+            web_sys::console::error_1(
+                &format!(
+                    "spiralcam viewer: set_deviation_path: {} position values for {} deviations \
+                     (three a point)",
+                    xyz.len(),
+                    deviation_nm.len()
+                )
+                .into(),
+            );
+            return;
+        }
+        if count < 2 {
+            return;
+        }
+        let buffer = |label, values: &[f32]| {
+            self.device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(label),
+                    contents: &f32_bytes(values),
+                    usage: wgpu::BufferUsages::VERTEX,
+                })
+        };
+        self.deviation_path = Some(DeviationPath {
+            positions: buffer("program path", xyz),
+            deviations: buffer("program deviation", deviation_nm),
+            count: count as u32,
+            lo_nm: lo_nm as f32,
+            hi_nm: hi_nm as f32,
+        });
+    }
+
+    /// Whether a verified program's path is shown (see [`Viewer::set_deviation_path`]).
+    pub fn shows_deviation(&self) -> bool {
+        self.deviation_path.is_some()
     }
 
     /// Orbits about the part centre by a drag of `dx`, `dy` CSS pixels.
@@ -504,7 +574,12 @@ impl Viewer {
                 pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
                 pass.draw_indexed(0..mesh.index_count, 0, 0..1);
             }
-            if let Some((buffer, count)) = &self.path {
+            if let Some(program) = &self.deviation_path {
+                pass.set_pipeline(&self.deviation_pipeline);
+                pass.set_vertex_buffer(0, program.positions.slice(..));
+                pass.set_vertex_buffer(1, program.deviations.slice(..));
+                pass.draw(0..program.count, 0..1);
+            } else if let Some((buffer, count)) = &self.path {
                 pass.set_pipeline(&self.path_pipeline);
                 pass.set_vertex_buffer(0, buffer.slice(..));
                 pass.draw(0..*count, 0..1);
@@ -553,12 +628,24 @@ impl Viewer {
         data.extend_from_slice(&[p.centre.x, p.centre.y, p.centre.z, p.exaggeration]);
         data.extend_from_slice(&[p.z_min, p.inv_range, 0.0, 0.0]);
         data.extend_from_slice(&PATH_COLOR);
+        data.extend_from_slice(&match &self.deviation_path {
+            Some(d) => {
+                let range = d.hi_nm - d.lo_nm;
+                let inv = if range.is_finite() && range > 0.0 {
+                    1.0 / range
+                } else {
+                    0.0
+                };
+                [d.lo_nm, inv, 1.0, 0.0]
+            }
+            None => [0.0; 4],
+        });
         self.queue
             .write_buffer(&self.uniforms, 0, &f32_bytes(&data));
     }
 }
 
-/// What both render pipelines share.
+/// What the render pipelines share.
 struct PipelineSetup<'a> {
     device: &'a wgpu::Device,
     layout: &'a wgpu::PipelineLayout,
@@ -625,6 +712,28 @@ impl PipelineSetup<'_> {
             "surface",
             wgpu::PrimitiveTopology::TriangleList,
             &[Some(layout(&position)), Some(layout(&normal))],
+        )
+    }
+
+    /// A verified program's path: a line strip from a position and a deviation buffer.
+    fn deviation(&self) -> wgpu::RenderPipeline {
+        let position = wgpu::vertex_attr_array![0 => Float32x3];
+        let deviation = wgpu::vertex_attr_array![1 => Float32];
+        self.pipeline(
+            "deviation",
+            wgpu::PrimitiveTopology::LineStrip,
+            &[
+                Some(wgpu::VertexBufferLayout {
+                    array_stride: 12,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &position,
+                }),
+                Some(wgpu::VertexBufferLayout {
+                    array_stride: 4,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &deviation,
+                }),
+            ],
         )
     }
 

@@ -1,4 +1,6 @@
-// The viewer's shaders: a colour-mapped, Lambert + ambient lit surface and the tool path on top.
+// The viewer's shaders: a colour-mapped, Lambert + ambient lit surface and the tool path on top;
+// or, while a verified program is shown, a grey surface and the program's path coloured by its
+// deviation from the design.
 // `fn colormap` is prepended at run time from colormap::wgsl(), so the legend and the shader
 // share one colour scale. Model coordinates are mm with Z the optical axis; the world is the
 // model moved to the part centre with Z scaled by the vertical exaggeration.
@@ -15,6 +17,9 @@ struct Uniforms {
     range: vec4<f32>,
     // The path's colour.
     path_color: vec4<f32>,
+    // x: the deviation at the bottom of the colour scale (nm); y: 1 / (top - bottom), 0 for a
+    // flat range; z: 1 while a program's deviation is shown (the surface grey), else 0.
+    deviation: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> u: Uniforms;
@@ -44,18 +49,41 @@ fn vs_surface(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>) 
 fn fs_surface(in: SurfaceOut) -> @location(0) vec4<f32> {
     // Two-sided Lambert, so the part seen from below is lit too.
     let lambert = abs(dot(normalize(in.normal), u.light.xyz));
-    return vec4<f32>(colormap(in.t) * (0.35 + 0.65 * lambert), 1.0);
+    let base = mix(colormap(in.t), vec3<f32>(0.6, 0.6, 0.6), u.deviation.z);
+    return vec4<f32>(base * (0.35 + 0.65 * lambert), 1.0);
+}
+
+// A path point moved a little towards the eye, which keeps it in front of the surface it lies on.
+fn path_clip(position: vec3<f32>) -> vec4<f32> {
+    let w = to_world(position);
+    let lifted = w + normalize(u.eye.xyz - w) * u.eye.w;
+    return u.view_proj * vec4<f32>(lifted, 1.0);
 }
 
 @vertex
 fn vs_path(@location(0) position: vec3<f32>) -> @builtin(position) vec4<f32> {
-    let w = to_world(position);
-    // A small lift towards the eye keeps the path in front of the surface it lies on.
-    let lifted = w + normalize(u.eye.xyz - w) * u.eye.w;
-    return u.view_proj * vec4<f32>(lifted, 1.0);
+    return path_clip(position);
 }
 
 @fragment
 fn fs_path() -> @location(0) vec4<f32> {
     return u.path_color;
+}
+
+struct DeviationOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) t: f32,
+};
+
+@vertex
+fn vs_deviation(@location(0) position: vec3<f32>, @location(1) deviation_nm: f32) -> DeviationOut {
+    var out: DeviationOut;
+    out.clip = path_clip(position);
+    out.t = (deviation_nm - u.deviation.x) * u.deviation.y;
+    return out;
+}
+
+@fragment
+fn fs_deviation(in: DeviationOut) -> @location(0) vec4<f32> {
+    return vec4<f32>(colormap(in.t), 1.0);
 }

@@ -28,7 +28,9 @@
 //! analyses over the last pass, bounded by [`VerifySettings::max_accuracy_points`]); memory is
 //! the reader's, the maps' and the bounded lists' ([`MAX_LISTED_PASSES`] passes,
 //! [`collision::MAX_LISTED`] collisions, [`warnings::MAX_KINDS`] warnings, a display trace of
-//! at most [`VerifySettings::trace_points`] points).
+//! the last pass of at most [`VerifySettings::trace_points`] points: every k-th cutting point,
+//! k = ⌈points of the last pass / trace points⌉, which the page draws over the surface coloured
+//! by deviation).
 //!
 //! Assumed, and stated in the report: program coordinates are the part's (work offsets zero,
 //! `G52` and `G92` applied as the reader does), C = 0 at θ = 0.
@@ -86,7 +88,7 @@ pub struct VerifySettings {
     /// The longest last pass the accuracy analyses follow, points (they cost tens of
     /// compensations a point): 2·10⁷ by default, about as long as the planner's own limit.
     pub max_accuracy_points: u64,
-    /// The most points of the display trace.
+    /// The most points of the display trace (the last pass, every k-th point).
     pub trace_points: usize,
 }
 
@@ -148,7 +150,7 @@ pub struct ProgramFacts {
     pub servo_word: String,
 }
 
-/// A point of the display trace.
+/// A point of the display trace: a cutting point of the last pass, in the part's frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TracePoint {
     /// x, mm.
@@ -157,10 +159,8 @@ pub struct TracePoint {
     pub y: f64,
     /// The commanded tip's height, mm.
     pub z: f64,
-    /// Its deviation, µm.
+    /// Its deviation, µm (positive: material left).
     pub deviation_um: f64,
-    /// Its pass, from 0.
-    pub pass: u32,
 }
 
 /// The verification of a program against a job.
@@ -209,7 +209,8 @@ pub struct Verification {
     /// each cell).
     #[serde(skip)]
     pub map: Raster,
-    /// Every k-th cutting point, for display.
+    /// Every k-th cutting point of the last pass, in order, for display (at most
+    /// [`VerifySettings::trace_points`]; k the least that keeps within it).
     #[serde(skip)]
     pub trace: Vec<TracePoint>,
 }
@@ -320,7 +321,7 @@ impl<'t> Run<'t> {
         let part = job.part_radius_mm();
         let stride = scan
             .passes
-            .moves
+            .last
             .div_ceil(settings.trace_points.max(1) as u64)
             .max(1);
         Self {
@@ -557,7 +558,8 @@ impl<'t> Run<'t> {
             self.map.keep_largest(q.rho * c, q.rho * s, um);
             self.push_accuracy(&p)?;
         }
-        if self.all.points().is_multiple_of(self.stride)
+        if self.is_last_pass()
+            && self.pass.points().is_multiple_of(self.stride)
             && self.trace.len() < self.settings.trace_points
         {
             self.trace.push(TracePoint {
@@ -565,7 +567,6 @@ impl<'t> Run<'t> {
                 y: q.rho * s,
                 z: q.z,
                 deviation_um: um,
-                pass: (self.passes.passes.saturating_sub(1)).min(u32::MAX as u64) as u32,
             });
         }
         Ok(())

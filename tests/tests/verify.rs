@@ -200,18 +200,25 @@ fn sphere_blocks(prefix: &str, wrap: bool, x_sign: f64, lift: impl Fn(usize) -> 
 /// sphere's slope (< 0.21 within ρ ≤ 4), 1e-6 µm for the compensation. µm.
 const HAND_TOL_UM: f64 = 0.5e-3 * 1.21 + 1e-6;
 
+/// A Fanuc macro-B program repeating `blocks` (from line 14 on) `passes` times in a `WHILE`
+/// loop, each pass `depth` mm deeper by a `G52 Z` shift that starts at `shift − depth` mm and
+/// stops at 0.
+fn fanuc_passes(passes: u32, depth: f64, shift: f64, blocks: &str) -> String {
+    format!(
+        "G71 G18 G90 G94\n#100 = {passes}\n#101 = {depth}\n#102 = {shift}\n#103 = 0\n\
+         WHILE [#103 LT #100] DO 1\n#102 = [#102 - #101]\nIF [#102 LT 0] THEN #102 = 0\n\
+         G52 Z[#102]\nG0 Z1.0\nG0 X4.0 C0\nG1 Z{:.6} F20\nG93 F0.001\n{blocks}G94\nG0 Z1.0\n\
+         #103 = [#103 + 1]\nEND 1\nG52 Z0\nM30\n",
+        sphere_tip(4.0)
+    )
+}
+
 #[test]
 fn a_fanuc_while_loop_with_a_g52_stock_and_a_gouging_block() {
     let job = sphere_job("moore", 1);
     // Three passes: stock 0.010, 0.004, 0 mm; block 100 of every pass 3 µm low.
     let blocks = sphere_blocks("", true, 1.0, |k| if k == 100 { -0.003 } else { 0.0 });
-    let text = format!(
-        "G71 G18 G90 G94\n#100 = 3\n#101 = 0.006\n#102 = 0.016\n#103 = 0\n\
-         WHILE [#103 LT #100] DO 1\n#102 = [#102 - #101]\nIF [#102 LT 0] THEN #102 = 0\n\
-         G52 Z[#102]\nG0 Z1.0\nG0 X4.0 C0\nG1 Z{:.6} F20\nG93 F0.001\n{blocks}G94\nG0 Z1.0\n\
-         #103 = [#103 + 1]\nEND 1\nG52 Z0\nM30\n",
-        sphere_tip(4.0)
-    );
+    let text = fanuc_passes(3, 0.006, 0.016, &blocks);
     let v = verify_text(&job, "lab.nc", &text, &[]).expect("verify");
     assert_eq!(v.pass_count, 3);
     let gouge_line = 14 + 99;
@@ -238,13 +245,7 @@ fn the_display_trace_is_every_kth_point_of_the_last_pass() {
     let job = sphere_job("moore", 1);
     // Two passes, 5 µm then 0 µm stock; block 96 of every pass 3 µm low.
     let blocks = sphere_blocks("", true, 1.0, |k| if k == 96 { -0.003 } else { 0.0 });
-    let text = format!(
-        "G71 G18 G90 G94\n#100 = 2\n#101 = 0.005\n#102 = 0.010\n#103 = 0\n\
-         WHILE [#103 LT #100] DO 1\n#102 = [#102 - #101]\n\
-         G52 Z[#102]\nG0 Z1.0\nG0 X4.0 C0\nG1 Z{:.6} F20\nG93 F0.001\n{blocks}G94\nG0 Z1.0\n\
-         #103 = [#103 + 1]\nEND 1\nG52 Z0\nM30\n",
-        sphere_tip(4.0)
-    );
+    let text = fanuc_passes(2, 0.005, 0.010, &blocks);
     let path = ToolPath::new(&job).expect("tool path");
     let mut open = || {
         Ok(Reader::new(

@@ -31,6 +31,8 @@
 //! - Order: doubling the points per revolution divides the largest error by 4 (second order).
 //! - The path check: `analyse` agrees with `segment_error` over every segment, its PV is the sum,
 //!   the map holds the extremes, the JSON has no map; bad input gives errors, not panics or NaN.
+//! - The accuracy analysis, which computes the segments on the workers (`for_each_pair`, the
+//!   path in batches of 16 384 points), equals the check fed point by point, to the bit.
 
 mod common;
 
@@ -39,12 +41,14 @@ use common::{
     random_xy_polynomial,
 };
 use proptest::prelude::*;
+use spiralcam::analysis::Analysis;
 use spiralcam::analysis::linearization::{
     LinearizationCheck, SegmentError, analyse, error_at, segment_error,
 };
 use spiralcam::path::PathPoint;
 use spiralcam::plan::Planner;
 use std::f64::consts::PI;
+use std::ops::ControlFlow;
 
 /// Seed of this file's property tests.
 const SEED: u64 = 5005;
@@ -535,6 +539,41 @@ fn the_path_check_agrees_with_each_segment() {
     let json = serde_json::to_value(&report).unwrap();
     assert!(json.get("map").is_none());
     assert_eq!(json["segments"], report.segments);
+}
+
+#[test]
+fn the_analysis_on_the_workers_equals_the_check_point_by_point() {
+    // 20 001 points: two batches of the workers, the second starting from the first's last.
+    let p = planner(
+        r#"{"type":"sinusoid","amplitude_mm":0.002,"wavelength_x_mm":0.7,"wavelength_y_mm":0.9}"#,
+        1.0,
+        0.05,
+        0.004,
+        80,
+    );
+    let pts = path_points(&p);
+    assert_eq!(pts.len(), 20_001);
+    let mut check = LinearizationCheck::new(&p, 48);
+    for q in &pts {
+        check.add(&p, q).unwrap();
+    }
+    let by_point = check.finish();
+    let mut stages = 0;
+    let analysis = Analysis::run(&p, 48, &mut |_| {
+        stages += 1;
+        ControlFlow::Continue(())
+    })
+    .unwrap();
+    assert!(stages > 0);
+    let on_workers = analysis.linearization;
+    let bits =
+        |r: &spiralcam::raster::Raster| r.values.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&on_workers.map), bits(&by_point.map));
+    let (mut a, mut b) = (on_workers, by_point);
+    (a.map.values, b.map.values) = (Vec::new(), Vec::new());
+    assert_eq!(a, b);
+    assert_eq!(a.segments, 20_000);
+    assert!(a.max_overcut_um > 0.0 && a.max_undercut_um > 0.0);
 }
 
 #[test]

@@ -513,6 +513,20 @@ pub fn segment_error(
     seg.errors(&ja, &jb)
 }
 
+/// The error of the segment from `a` to `b` ([`segment_error`]); for the path's first point
+/// (`a` None) none, after the check [`LinearizationCheck::add`] makes of a first point (its
+/// contact's surface is defined). What [`LinearizationCheck::take`] is fed from other threads.
+pub fn error_ending_at(
+    tool_path: &ToolPath,
+    a: Option<&PathPoint>,
+    b: &PathPoint,
+) -> Result<Option<SegmentError>, UndefinedError> {
+    match a {
+        Some(a) => segment_error(tool_path, a, b).map(Some),
+        None => Context::new(tool_path).jet_of_point(b).map(|_| None),
+    }
+}
+
 /// e(s), de/ds and d²e/ds² of the move from `a` to `b` at s (0 and 1 use the points' own
 /// contacts, so e is exactly 0 there), for checks and plots.
 pub fn error_at(
@@ -571,27 +585,34 @@ impl LinearizationCheck {
         let jet = ctx.jet_of_point(p)?;
         if let Some((a, ja)) = &self.prev {
             let err = segment(&ctx, a, p)?.errors(ja, &jet)?;
-            self.segments += 1;
-            for x in [err.overcut, err.undercut] {
-                let (s, c) = x.theta.sin_cos();
-                self.map
-                    .keep_largest(x.rho * c, x.rho * s, x.error_mm * 1e3);
-            }
-            if self
-                .overcut
-                .is_none_or(|o| err.overcut.error_mm < o.error_mm)
-            {
-                self.overcut = Some(err.overcut);
-            }
-            if self
-                .undercut
-                .is_none_or(|u| err.undercut.error_mm > u.error_mm)
-            {
-                self.undercut = Some(err.undercut);
-            }
+            self.take(&err);
         }
         self.prev = Some((*p, jet));
         Ok(())
+    }
+
+    /// Takes the error of the path's next segment, computed elsewhere by [`error_ending_at`]
+    /// (on another thread: the same figures as [`Self::add`] point by point, when every
+    /// segment is taken in order). Not to be mixed with `add` on one check.
+    pub fn take(&mut self, err: &SegmentError) {
+        self.segments += 1;
+        for x in [err.overcut, err.undercut] {
+            let (s, c) = x.theta.sin_cos();
+            self.map
+                .keep_largest(x.rho * c, x.rho * s, x.error_mm * 1e3);
+        }
+        if self
+            .overcut
+            .is_none_or(|o| err.overcut.error_mm < o.error_mm)
+        {
+            self.overcut = Some(err.overcut);
+        }
+        if self
+            .undercut
+            .is_none_or(|u| err.undercut.error_mm > u.error_mm)
+        {
+            self.undercut = Some(err.undercut);
+        }
     }
 
     /// The figures of the path seen so far.

@@ -53,13 +53,13 @@ pub mod setup;
 pub mod verify;
 pub mod zernike_fit;
 
-use crate::analysis::linearization::{LinearizationCheck, LinearizationReport};
+use crate::analysis::linearization::{LinearizationCheck, LinearizationReport, error_ending_at};
 use crate::analysis::predicted_form::{FormPredictor, FormSettings, PredictedForm};
 use crate::field::FieldError;
 use crate::job::Compensation;
 use crate::path::PathError;
 use crate::path::space_spiral::{Survey, survey};
-use crate::progress::{PROGRESS_EVERY, Progress, Stage};
+use crate::progress::{Progress, Stage};
 use crate::raster::Raster;
 use crate::tool::ToolPath;
 use crate::tool::geometry::{ToolGeometryCheck, ToolGeometryReport};
@@ -101,7 +101,6 @@ impl Analysis {
             )
             .into());
         }
-        let total = tool_path.spiral().point_count_hint();
         let mut linearization = LinearizationCheck::new(tool_path, map_size);
         let angles = tool_path
             .job()
@@ -118,31 +117,23 @@ impl Analysis {
             }
             Err(e) => return Err(e),
         };
-        let mut done = 0u64;
-        for p in tool_path.points() {
-            let p = p?;
-            linearization.add(tool_path, &p)?;
-            tool_geometry.add(tool_path, &p)?;
-            if let Some(f) = form.as_mut() {
-                f.push(&p)?;
-            }
-            done += 1;
-            if done.is_multiple_of(PROGRESS_EVERY)
-                && progress(Progress {
-                    stage: Stage::Analysis,
-                    done,
-                    total,
-                })
-                .is_break()
-            {
-                return Err(PathError::Cancelled);
-            }
-        }
-        let _ = progress(Progress {
-            stage: Stage::Analysis,
-            done,
-            total,
-        });
+        // The path and each segment's linearization error on the workers; the tool geometry
+        // and the swept form (which follow the path in order) on this thread.
+        tool_path.for_each_pair(
+            Stage::Analysis,
+            progress,
+            |a, b| Ok::<_, PathError>(error_ending_at(tool_path, a, b)?),
+            &mut |p, _, segment| {
+                if let Some(segment) = segment {
+                    linearization.take(segment);
+                }
+                tool_geometry.add(tool_path, p)?;
+                if let Some(f) = form.as_mut() {
+                    f.push(p)?;
+                }
+                Ok(())
+            },
+        )?;
         let job = tool_path.job();
         let revolution = match survey(
             tool_path.surface(),

@@ -240,25 +240,61 @@ impl ToolPath {
         progress: &mut ProgressFn,
         visit: &mut dyn FnMut(&PathPoint, bool) -> Result<(), E>,
     ) -> Result<u64, E> {
+        self.for_each_pair(stage, progress, |_, _| Ok(()), &mut |p, folds, _| {
+            visit(p, folds)
+        })
+    }
+
+    /// [`Self::for_each_point`] with more work on the workers: `pair(previous, point)` (the
+    /// previous point `None` for the first) is computed beside each point's compensation, in
+    /// parallel, and its result handed to `visit` with the point, in order. Each batch also
+    /// compensates the last point of the batch before it, so its first point has its
+    /// predecessor: every point and every result is the same whatever the number of workers.
+    pub fn for_each_pair<T: Send, E: From<PathError> + Send>(
+        &self,
+        stage: Stage,
+        progress: &mut ProgressFn,
+        pair: impl Fn(Option<&PathPoint>, &PathPoint) -> Result<T, E> + Sync,
+        visit: &mut dyn FnMut(&PathPoint, bool, &T) -> Result<(), E>,
+    ) -> Result<u64, E> {
         let total = self.spiral.point_count_hint();
         let mut done = 0u64;
         let mut spiral = self.spiral.points();
-        pipeline::<SpiralPoint, (PathPoint, bool), E>(
-            |input: &mut Vec<SpiralPoint>| {
+        // A batch's points with their indices and whether they are handed on: in every batch
+        // but the first, the first point is the last of the batch before, compensated again
+        // as the predecessor of the next and not handed on twice.
+        let mut next = 0u64;
+        let mut carried: Option<(u64, SpiralPoint, bool)> = None;
+        pipeline::<(u64, SpiralPoint, bool), (PathPoint, bool, T), E>(
+            |input: &mut Vec<(u64, SpiralPoint, bool)>| {
                 input.clear();
-                input.extend(spiral.by_ref().take(BATCH));
+                input.extend(carried);
+                let start = input.len();
+                input.extend(spiral.by_ref().take(BATCH).map(|sp| {
+                    next += 1;
+                    (next - 1, sp, true)
+                }));
+                if input.len() == start {
+                    input.clear();
+                }
+                carried = input.last().map(|&(index, sp, _)| (index, sp, false));
             },
-            |first, input, output: &mut Vec<(PathPoint, bool)>| {
+            |_, input, output: &mut Vec<(PathPoint, bool, T)>| {
                 output.clear();
-                for (k, sp) in input.iter().enumerate() {
-                    let p = self.path_point(first + k as u64, *sp);
-                    output.push(p.map_err(|e| E::from(e.into()))?);
+                let mut previous: Option<PathPoint> = None;
+                for &(index, sp, handed_on) in input {
+                    let (p, folds) = self.path_point(index, sp).map_err(|e| E::from(e.into()))?;
+                    if handed_on {
+                        let t = pair(previous.as_ref(), &p)?;
+                        output.push((p, folds, t));
+                    }
+                    previous = Some(p);
                 }
                 Ok(())
             },
             |output| {
-                for (p, folds) in output {
-                    visit(p, *folds)?;
+                for (p, folds, t) in output {
+                    visit(p, *folds, t)?;
                     done += 1;
                     if done.is_multiple_of(PROGRESS_EVERY)
                         && progress(Progress { stage, done, total }).is_break()

@@ -30,7 +30,9 @@
 //! ([`crate::tool::geometry`], paper 000), and how far the part is from a surface of revolution
 //! with the pass spacing the space spiral would give ([`crate::path::space_spiral::survey`],
 //! paper 001). The command line prints it as JSON (`spiralcam analyse`); the page shows its
-//! figures and maps.
+//! figures and maps. The pass runs on every core: the path and each segment's linearization
+//! error are computed on the workers ([`crate::tool::ToolPath::for_each_pair`]), the rest follows
+//! the path in order on the calling thread; the figures are the same on any number of threads.
 //!
 //! The analyses assume one-way compensation (X on the spiral); a two-way job is refused.
 //!

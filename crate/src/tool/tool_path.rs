@@ -2,7 +2,9 @@
 //! compensator that turns each spiral point into a commanded point ([`PathPoint`]). It is what
 //! every analysis reads ([`crate::analysis`], [`crate::dynamics`]) and what the planner
 //! ([`crate::plan`]) streams into the writers. The path is never stored: [`ToolPath::points`]
-//! computes it one point at a time, [`ToolPath::for_each_point`] in batches on every core.
+//! computes it one point at a time, [`ToolPath::for_each_point`] in batches on every core,
+//! [`ToolPath::for_each_pair`] with a function of each point and its predecessor computed beside
+//! it (an analysis's per-segment work).
 
 use super::NoseCompensator;
 use super::reach::{self, Reach};

@@ -43,7 +43,7 @@ use common::{
 use proptest::prelude::*;
 use spiralcam::analysis::Analysis;
 use spiralcam::analysis::linearization::{
-    LinearizationCheck, SegmentError, analyse, error_at, segment_error,
+    LinearizationCheck, LinearizationReport, SegmentError, analyse, error_at, segment_error,
 };
 use spiralcam::path::PathPoint;
 use spiralcam::plan::Planner;
@@ -490,6 +490,17 @@ fn the_error_is_of_second_order_in_the_angle_step() {
     }
 }
 
+/// Asserts two reports equal to the bit; the map holds NaN, which compares unequal, so it is
+/// compared by bits.
+fn assert_same_report(a: &LinearizationReport, b: &LinearizationReport) {
+    let bits =
+        |r: &spiralcam::raster::Raster| r.values.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&a.map), bits(&b.map));
+    let (mut a, mut b) = (a.clone(), b.clone());
+    (a.map.values, b.map.values) = (Vec::new(), Vec::new());
+    assert_eq!(a, b);
+}
+
 #[test]
 fn the_path_check_agrees_with_each_segment() {
     let p = planner(
@@ -513,13 +524,7 @@ fn the_path_check_agrees_with_each_segment() {
     let from_check = check.finish();
     let mut calls = Vec::new();
     let report = analyse(&p, 32, |n| calls.push(n)).unwrap();
-    // The map holds NaN, which compares unequal: compare it by bits.
-    let bits =
-        |r: &spiralcam::raster::Raster| r.values.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
-    assert_eq!(bits(&report.map), bits(&from_check.map));
-    let (mut a, mut b) = (report.clone(), from_check);
-    (a.map.values, b.map.values) = (Vec::new(), Vec::new());
-    assert_eq!(a, b);
+    assert_same_report(&report, &from_check);
     assert_eq!(calls.last(), Some(&(pts.len() as u64)));
     assert_eq!(report.segments, pts.len() as u64 - 1);
     assert_eq!(report.max_overcut_um, over * 1e3);
@@ -566,14 +571,9 @@ fn the_analysis_on_the_workers_equals_the_check_point_by_point() {
     .unwrap();
     assert!(stages > 0);
     let on_workers = analysis.linearization;
-    let bits =
-        |r: &spiralcam::raster::Raster| r.values.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
-    assert_eq!(bits(&on_workers.map), bits(&by_point.map));
-    let (mut a, mut b) = (on_workers, by_point);
-    (a.map.values, b.map.values) = (Vec::new(), Vec::new());
-    assert_eq!(a, b);
-    assert_eq!(a.segments, 20_000);
-    assert!(a.max_overcut_um > 0.0 && a.max_undercut_um > 0.0);
+    assert_same_report(&on_workers, &by_point);
+    assert_eq!(on_workers.segments, 20_000);
+    assert!(on_workers.max_overcut_um > 0.0 && on_workers.max_undercut_um > 0.0);
 }
 
 #[test]

@@ -678,7 +678,7 @@ async function main() {
    * path and height legend when `m` is null. */
   const showProgram = (m) => {
     verified = m;
-    $('verify-show').hidden = !m;
+    $('verify-show').hidden = !m || !viewer;
     status.programDrawn = null;
     if (!viewer) return;
     if (m && $('verify-show-path').checked) status.programDrawn = showProgramPath(viewer, m);
@@ -771,8 +771,8 @@ async function main() {
         const drawn = passPaths(m.path, m.report.program);
         viewer.set_path(drawn.path);
         shownPlan = { zMin: m.zMin, zMax: m.zMax, revolutionStep: m.revolutionStep, note: drawn.note };
-        showProgram(null);
       }
+      showProgram(null);
       setState('done');
     } catch (e) {
       if (mine !== generation) return;

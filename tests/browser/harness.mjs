@@ -5,7 +5,7 @@
 
 import { spawn, execFileSync } from 'node:child_process';
 import { createServer } from 'node:net';
-import { mkdtempSync, readFileSync } from 'node:fs';
+import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
@@ -90,6 +90,15 @@ export async function replan(page, action, settle = ['done']) {
   await action();
   await page.waitForFunction((n) => window.spiralcam.started > n, started, { timeout: 10_000 });
   await waitForState(page, settle);
+}
+
+/** Opens `job` through the page's "Open job…" (from a file named after it) and waits for its
+ * plan. */
+export async function openJob(page, job) {
+  const dir = mkdtempSync(join(tmpdir(), 'spiralcam-open-'));
+  const path = join(dir, `${job.name}.json`);
+  writeFileSync(path, JSON.stringify(job));
+  await replan(page, () => page.setInputFiles('#upload-job', path));
 }
 
 /** Types `text` into the job field at `path` and waits as [`replan`] does. */

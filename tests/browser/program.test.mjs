@@ -12,7 +12,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { execFileSync } from 'node:child_process';
 import { inflateRawSync } from 'node:zlib';
-import { download, launch, openPage, replan, spiralcamCli, startServer, waitForState } from './harness.mjs';
+import { download, launch, openJob, openPage, replan, spiralcamCli, startServer, waitForState } from './harness.mjs';
 
 /** A Moore-style job with two groups of passes and a limit that splits it into children. */
 const PROGRAM_JOB = {
@@ -53,14 +53,6 @@ function unzip(buffer) {
     at = start + size;
   }
   return files;
-}
-
-/** Opens `job` through the page's "Open job…" and waits for its plan. */
-async function openJob(page, job) {
-  const dir = mkdtempSync(join(tmpdir(), 'spiralcam-open-'));
-  const path = join(dir, `${job.name}.json`);
-  writeFileSync(path, JSON.stringify(job));
-  await replan(page, () => page.setInputFiles('#upload-job', path));
 }
 
 let server;

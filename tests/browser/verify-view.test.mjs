@@ -13,7 +13,7 @@ import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { execFileSync } from 'node:child_process';
-import { canvasPixels, launch, openPage, replan, setField, spiralcamCli, startServer, waitForState } from './harness.mjs';
+import { canvasPixels, launch, openJob, openPage, setField, spiralcamCli, startServer, waitForState } from './harness.mjs';
 
 const JOB = {
   name: 'verify-view',
@@ -77,10 +77,7 @@ for (const backend of ['WebGPU', 'WebGL2']) {
       ({ browser, context } = await launch(backend));
       ({ page, errors } = await openPage(context, server.url));
       assert.equal(await page.evaluate(() => window.spiralcam.backend), backend);
-      const dir = mkdtempSync(join(tmpdir(), 'spiralcam-open-'));
-      const path = join(dir, 'verify-view.json');
-      writeFileSync(path, JSON.stringify(JOB));
-      await replan(page, () => page.setInputFiles('#upload-job', path));
+      await openJob(page, JOB);
     });
     after(async () => {
       await browser.close();

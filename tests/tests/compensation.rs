@@ -437,6 +437,72 @@ fn the_paper004_lens_array_path_touches_at_the_rims_to_the_picometre() {
 }
 
 #[test]
+fn the_warm_started_path_is_the_cold_one_and_the_same_in_batches_as_in_a_walk() {
+    // Where the surface proves the nose height concave, each point's Newton iteration starts
+    // from its predecessor's contact (runs of WARM_RUN points aligned on the index). Against
+    // the cold start of every point alone: the same height to 1e-14 mm and contact angle to
+    // 1e-9 rad (the shortcut's own tolerance: |F′|/m ≤ 1e-10 rad). And the path computed in
+    // batches on the workers (three batches, each recomputing the run it starts in), each
+    // point with its predecessor, equals the walk to the bit.
+    use spiralcam::progress::{Stage, ignore};
+    use spiralcam::tool::tool_path::WARM_RUN;
+    let surfaces = [
+        r#"{"type":"lens_array","lens_radius_mm":2.84,"aperture_mm":1.0,"pitch_mm":1.0,"grid":"rectangular","form":"concave"}"#,
+        r#"{"type":"asphere","radius_mm":40,"conic":-1.2,"coefficients":[1.5e-6,-2e-9]}"#,
+    ];
+    for surface in surfaces {
+        let job = format!(
+            r#"{{"name":"warm","part":{{"diameter_mm":10}},"surface":{surface},
+                "tool":{{"nose_radius_mm":0.5,"included_angle_deg":100}},"machine":{{"spindle_rpm":800}},
+                "strategy":{{"feed_mm_per_rev":0.125,"sampling":{{"type":"constant_angle","points_per_rev":1000}}}}}}"#
+        );
+        let planner = common::planner_of(&job);
+        let path = planner.path();
+        assert!(path.nose().concavity(path.surface()).is_some());
+        let walk = common::path_points(&planner);
+        assert_eq!(walk.len(), 40_001);
+        let (mut batched, mut before) = (Vec::new(), Vec::new());
+        path.for_each_pair(
+            Stage::Path,
+            &mut ignore,
+            |previous, _| Ok::<_, spiralcam::path::PathError>(previous.copied()),
+            &mut |p, _, previous| {
+                batched.push(*p);
+                before.push(*previous);
+                Ok(())
+            },
+        )
+        .unwrap();
+        assert_eq!(batched, walk, "{surface}: batches against the walk");
+        assert_eq!(before[0], None);
+        for (k, previous) in before.iter().enumerate().skip(1) {
+            assert_eq!(
+                previous.as_ref(),
+                Some(&walk[k - 1]),
+                "{surface}: point {k}"
+            );
+        }
+        let (mut worst_z, mut worst_angle, mut warm) = (0.0f64, 0.0f64, 0);
+        for p in &walk {
+            let (s, c) = p.theta.sin_cos();
+            let cold = path.nose().compensate(path.surface(), p.rho, c, s).unwrap();
+            worst_z = worst_z.max((cold.z_tip - p.z).abs());
+            worst_angle = worst_angle.max((cold.angle - p.contact_angle).abs());
+            warm += usize::from(p.index % WARM_RUN != 0);
+        }
+        assert!(warm > 39_000);
+        assert!(
+            worst_z <= 1e-14,
+            "{surface}: height {worst_z:e} mm from the cold start"
+        );
+        assert!(
+            worst_angle <= 1e-9,
+            "{surface}: contact angle {worst_angle:e} rad from the cold start"
+        );
+    }
+}
+
+#[test]
 fn every_point_of_a_planned_sinusoid_path_touches_without_cutting() {
     let job = r#"{"name":"sine","part":{"diameter_mm":2},
         "surface":{"type":"sinusoid","amplitude_mm":0.003,"wavelength_x_mm":0.5,"wavelength_y_mm":0.8,

@@ -226,7 +226,9 @@ impl Surface for LensArray {
     }
 
     /// The crossings of the line with the rims of the lenslets near it: the roots of
-    /// `|p(t) − centre|² = (a/2)²`.
+    /// `|p(t) − centre|² = (a/2)²`, `t = along ± √((a/2 − across)(a/2 + across))` with the
+    /// centre's offsets along and across the line (the product, not `b² − c`, keeps a line
+    /// that grazes a rim from losing its digits to cancellation).
     fn slope_kinks(&self, line: Line, t0: f64, t1: f64, out: &mut Vec<f64>) {
         let h = self.half_aperture;
         let ((xa, ya), (xb, yb)) = (line.at(t0), line.at(t1));
@@ -238,11 +240,16 @@ impl Surface for LensArray {
         ];
         self.centres_in(bounds, |cx, cy| {
             let (dx, dy) = (cx - line.x0, cy - line.y0);
-            let b = line.c * dx + line.s * dy;
-            let disc = b * b - (dx * dx + dy * dy - h * h);
+            let along = line.c * dx + line.s * dy;
+            let across = line.c * dy - line.s * dx;
+            let disc = (h - across) * (h + across);
             if disc > 0.0 {
                 let w = disc.sqrt();
-                out.extend([b - w, b + w].into_iter().filter(|t| *t > t0 && *t < t1));
+                out.extend(
+                    [along - w, along + w]
+                        .into_iter()
+                        .filter(|t| *t > t0 && *t < t1),
+                );
             }
         });
     }

@@ -32,6 +32,15 @@
 //! without them, or a nose too wide for them, gets the full search. Even aspheres and concave
 //! lens arrays give bounds; every other family is searched in full.
 //!
+//! **Warm start.** Along a path the certificate does not depend on where Newton starts: with
+//! one maximum on the arc, any start converges to it (kinks probed as before). A path therefore
+//! starts each point's iteration from its predecessor's contact angle
+//! ([`NoseCompensator::compensate_from`]; [`super::tool_path::WARM_RUN`] says how a path keeps
+//! that independent of its batches), which is within about 10⁻⁵ rad of the new one, so one
+//! Newton step lands within the 10⁻¹⁰ rad tolerance: about 2 evaluations a point instead of 4,
+//! and the sines and cosines of the step by rotation from the sample before (no library call).
+//! The contact found is the cold start's to that tolerance (tests/tests/compensation.rs).
+//!
 //! The arc is cut at the part's edge: beyond `limit_radius_mm` there is no material.
 //!
 //! **Measured edge** (`tool.waviness`, [`super::waviness`]): the edge has the radius
@@ -218,6 +227,36 @@ impl NoseCompensator {
         c: f64,
         s: f64,
     ) -> Result<Contact, UndefinedError> {
+        self.compensate_from(surface, self.concavity(surface), rho_s, c, s, None)
+    }
+
+    /// The concavity bound `m` (−F″ ≥ m on every arc over the part) where `surface` proves one
+    /// for this nose ([`crate::surface::SectionBounds::nose_height_concavity`]): the certificate
+    /// of the concave shortcut. A path computes it once and hands it to
+    /// [`NoseCompensator::compensate_from`].
+    pub fn concavity(&self, surface: &dyn Surface) -> Option<f64> {
+        match self.waviness {
+            None => surface
+                .section_bounds(self.limit_radius)
+                .and_then(|b| b.nose_height_concavity(self.r, self.half_angle)),
+            Some(_) => None,
+        }
+    }
+
+    /// [`NoseCompensator::compensate`] with the surface's [`NoseCompensator::concavity`] given,
+    /// and a warm start: where the concave shortcut applies, its Newton iteration starts from
+    /// the nose angle `start` (a neighbouring point's contact) instead of 0. The certificate is
+    /// the same either way (one maximum on the arc), so the contact found is the same to the
+    /// shortcut's tolerance; only the evaluations spent differ. Ignored by the whole-arc search.
+    pub fn compensate_from(
+        &self,
+        surface: &dyn Surface,
+        concavity: Option<f64>,
+        rho_s: f64,
+        c: f64,
+        s: f64,
+        start: Option<f64>,
+    ) -> Result<Contact, UndefinedError> {
         let r = self.r;
         if r == 0.0 {
             let z = surface.sag(rho_s * c, rho_s * s)?;
@@ -239,15 +278,9 @@ impl NoseCompensator {
             edge: self.waviness.as_ref(),
         };
         let (lo, hi) = self.arc_range(rho_s);
-        let concavity = match self.waviness {
-            None => surface
-                .section_bounds(self.limit_radius)
-                .and_then(|b| b.nose_height_concavity(r, self.half_angle)),
-            Some(_) => None,
-        };
         let best = if let Some(m) = concavity {
             let kinks = self.kink_angles(surface, rho_s, c, s, lo, hi);
-            section.concave_peak(&kinks, lo, hi, m)?
+            section.concave_peak(&kinks, lo, hi, m, start.unwrap_or(0.0))?
         } else {
             self.search(&section, lo, hi)?
         };
@@ -261,7 +294,7 @@ impl NoseCompensator {
             z_center: best.f,
             z_tip: best.f - tip,
             angle: best.a,
-            rho: rho_s + reach * best.a.sin(),
+            rho: rho_s + reach * best.sa,
             z: best.z,
             at_arc_end: at_arc_end && best.g.abs() > 1e-12 * r,
         })
@@ -395,6 +428,9 @@ struct Section<'a> {
 #[derive(Debug, Clone, Copy)]
 struct Sample {
     a: f64,
+    /// sin a and cos a.
+    sa: f64,
+    ca: f64,
     f: f64,
     g: f64,
     gg: f64,
@@ -404,6 +440,22 @@ struct Sample {
 impl Section<'_> {
     fn at(&self, a: f64) -> Result<Sample, UndefinedError> {
         let (sa, ca) = a.sin_cos();
+        self.at_sin_cos(a, sa, ca)
+    }
+
+    /// As [`Section::at`] for an angle `a` near the sample `from`: within 10⁻³ rad, sin a and
+    /// cos a by rotating `from`'s by d = a − a_from, with sin d and cos d from their Taylor
+    /// series (the first term left out is below 10⁻²¹ there), to the last bit or two of libm's
+    /// and without its call; farther, by [`f64::sin_cos`].
+    fn at_near(&self, from: &Sample, a: f64) -> Result<Sample, UndefinedError> {
+        let d = a - from.a;
+        if d.abs() > 1e-3 {
+            return self.at(a);
+        }
+        let d2 = d * d;
+        let sd = d * (1.0 - d2 / 6.0 * (1.0 - d2 / 20.0));
+        let cd = 1.0 - d2 / 2.0 * (1.0 - d2 / 12.0 * (1.0 - d2 / 30.0));
+        let (sa, ca) = (from.sa * cd + from.ca * sd, from.ca * cd - from.sa * sd);
         self.at_sin_cos(a, sa, ca)
     }
 
@@ -420,6 +472,8 @@ impl Section<'_> {
             .radial(self.c, self.s);
         Ok(Sample {
             a,
+            sa,
+            ca,
             f: l.z + r * ca,
             g: r * ca * l.slope - r * sa,
             gg: r * r * ca * ca * l.curvature_term - r * sa * l.slope - r * ca,
@@ -445,6 +499,8 @@ impl Section<'_> {
             .radial(self.c, self.s);
         Ok(Sample {
             a,
+            sa,
+            ca,
             f: l.z + rr * ca,
             g: l.slope * u1 + v1,
             gg: l.curvature_term * u1 * u1 + l.slope * u2 + v2,
@@ -454,8 +510,8 @@ impl Section<'_> {
 
     /// The maximum of F over `[lo, hi]` where F is concave
     /// ([`crate::surface::SectionBounds::nose_height_concavity`]): F′ never rises, so the sign
-    /// of F′ anywhere says on which side the one maximum lies. Newton from a = 0 (clamped to
-    /// the arc) until a step would cross a slope kink (`kinks`: the angles just either side of
+    /// of F′ anywhere says on which side the one maximum lies. Newton from `start` (0, or a
+    /// neighbour's contact; clamped to the arc) until a step would cross a slope kink (`kinks`: the angles just either side of
     /// each, ascending), where the kink's sides are probed instead, or the arc's end. With
     /// −F″ ≥ `m`, the maximum lies within |F′(x)|/m of a sample x and exceeds F(x) by at most
     /// F′(x)²/(2m): a sample x with |F′(x)|/m ≤ 10⁻¹⁰ rad is the answer (its height then
@@ -467,8 +523,9 @@ impl Section<'_> {
         lo: f64,
         hi: f64,
         m: f64,
+        start: f64,
     ) -> Result<Sample, UndefinedError> {
-        let mut x = self.at(0f64.clamp(lo, hi))?;
+        let mut x = self.at(start.clamp(lo, hi))?;
         let (mut left, mut right) = (None::<Sample>, None::<Sample>);
         for _ in 0..100 {
             if x.g.abs() <= 1e-10 * m {
@@ -503,7 +560,7 @@ impl Section<'_> {
             } else {
                 stop
             };
-            x = self.at(a)?;
+            x = self.at_near(&x, a)?;
         }
         // Unreachable for a concave F (each step halves the distance or brackets); the best
         // seen stands.
@@ -545,7 +602,7 @@ impl Section<'_> {
             } else {
                 0.5 * (lo.a + hi.a)
             };
-            x = self.at(a)?;
+            x = self.at_near(&x, a)?;
             if x.f > best.f {
                 best = x;
             }

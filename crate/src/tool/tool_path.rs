@@ -4,7 +4,9 @@
 //! ([`crate::plan`]) streams into the writers. The path is never stored: [`ToolPath::points`]
 //! computes it one point at a time, [`ToolPath::for_each_point`] in batches on every core,
 //! [`ToolPath::for_each_pair`] with a function of each point and its predecessor computed beside
-//! it (an analysis's per-segment work).
+//! it (an analysis's per-segment work). Each point's contact search starts from its
+//! predecessor's contact within runs of [`WARM_RUN`] points aligned on the index (the warm start
+//! of [`crate::tool::one_way`]), so a point is the same bits however the path is computed.
 
 use super::NoseCompensator;
 use super::reach::{self, Reach};
@@ -17,6 +19,13 @@ use crate::surface::{Surface, UndefinedError};
 
 /// Points compensated per batch before they are handed on: bounds the memory of a run.
 const BATCH: usize = 16_384;
+
+/// The path is compensated in runs of this many points, aligned on the index: the first point
+/// of a run starts its contact search cold, every other one from its predecessor's contact
+/// ([`NoseCompensator::compensate_from`]). A point's result thus depends on its index alone,
+/// however the path is cut into batches, slices or threads, as long as each piece starts on a
+/// run boundary or recomputes the run it starts in. A divisor of [`BATCH`].
+pub const WARM_RUN: u64 = 64;
 
 /// The spiral of a strategy on `surface`, by the builder of its sampling: [`Spiral::new`] for
 /// constant angle and constant arc, [`crate::path::hcaa::spiral`] for `hcaa` and `adaptive`
@@ -76,6 +85,8 @@ pub struct ToolPath {
     surface: Box<dyn Surface>,
     spiral: Spiral,
     nose: NoseCompensator,
+    /// The nose's concavity bound on the surface ([`NoseCompensator::concavity`]).
+    concavity: Option<f64>,
 }
 
 impl ToolPath {
@@ -112,11 +123,13 @@ impl ToolPath {
             &nose,
             progress,
         )?;
+        let concavity = nose.concavity(surface.as_ref());
         Ok(Self {
             job: job.clone(),
             surface,
             spiral,
             nose,
+            concavity,
         })
     }
 
@@ -140,6 +153,12 @@ impl ToolPath {
         &self.nose
     }
 
+    /// The nose's concavity bound on the surface, the certificate of the concave shortcut
+    /// ([`NoseCompensator::concavity`]), computed once.
+    pub fn concavity(&self) -> Option<f64> {
+        self.concavity
+    }
+
     /// The one-way tip height over (ρ, θ) ([`NoseCompensator::tip_height`]).
     pub fn tip_height(&self, rho: f64, theta: f64) -> Result<f64, UndefinedError> {
         self.nose.tip_height(self.surface(), rho, theta)
@@ -147,16 +166,40 @@ impl ToolPath {
 
     /// The compensated path, streamed.
     pub fn points(&self) -> impl Iterator<Item = Result<PathPoint, UndefinedError>> + '_ {
-        self.spiral
-            .points()
-            .enumerate()
-            .map(move |(i, sp)| Ok(self.path_point(i as u64, sp)?.0))
+        let mut warm = None;
+        self.spiral.points().enumerate().map(move |(i, sp)| {
+            let p = self.warm_point(i as u64, sp, &mut warm)?.0;
+            Ok(p)
+        })
+    }
+
+    /// [`Self::path_point`] in a walk along the path: `warm` holds the previous point's contact
+    /// angle, dropped at the start of each [`WARM_RUN`], and takes this one's.
+    fn warm_point(
+        &self,
+        index: u64,
+        sp: SpiralPoint,
+        warm: &mut Option<f64>,
+    ) -> Result<(PathPoint, bool), UndefinedError> {
+        if index.is_multiple_of(WARM_RUN) {
+            *warm = None;
+        }
+        let point = self.path_point(index, sp, *warm)?;
+        *warm = Some(point.0.contact_angle);
+        Ok(point)
     }
 
     /// The compensated path point of the `index`-th spiral point, and whether the two-way
-    /// offset folds there (a loop; always false one-way). Two-way, `rho` and `theta` are the
-    /// nose centre's X and C ([`NoseCompensator::compensate_two_way`]).
-    fn path_point(&self, index: u64, sp: SpiralPoint) -> Result<(PathPoint, bool), UndefinedError> {
+    /// offset folds there (a loop; always false one-way); one-way, the contact search starts
+    /// from the nose angle `start` where it can ([`NoseCompensator::compensate_from`]).
+    /// Two-way, `rho` and `theta` are the nose centre's X and C
+    /// ([`NoseCompensator::compensate_two_way`]).
+    fn path_point(
+        &self,
+        index: u64,
+        sp: SpiralPoint,
+        start: Option<f64>,
+    ) -> Result<(PathPoint, bool), UndefinedError> {
         let (s, c) = sp.theta.sin_cos();
         if self.job.strategy.compensation == Compensation::TwoWay {
             let t = self
@@ -175,7 +218,14 @@ impl ToolPath {
                 t.folds,
             ));
         }
-        let contact = self.nose.compensate(self.surface.as_ref(), sp.rho, c, s)?;
+        let contact = self.nose.compensate_from(
+            self.surface.as_ref(),
+            self.concavity,
+            sp.rho,
+            c,
+            s,
+            start,
+        )?;
         Ok((
             PathPoint {
                 index,
@@ -210,9 +260,9 @@ impl ToolPath {
                 let advance = a.rho - b.rho;
                 Ok(Probe {
                     points: [
-                        self.path_point(index, a)?.0,
-                        self.path_point(index + 1, b)?.0,
-                        self.path_point(index + 2, c)?.0,
+                        self.path_point(index, a, None)?.0,
+                        self.path_point(index + 1, b, None)?.0,
+                        self.path_point(index + 2, c, None)?.0,
                     ],
                     per_mm: if advance > 0.0 { 1.0 / advance } else { 0.0 },
                 })
@@ -263,14 +313,14 @@ impl ToolPath {
         let mut done = 0u64;
         let mut spiral = self.spiral.points();
         // A batch's points with their indices and whether they are handed on: in every batch
-        // but the first, the first point is the last of the batch before, compensated again
-        // as the predecessor of the next and not handed on twice.
+        // but the first, the first points are the last run of the batch before, compensated
+        // again (the last one is the predecessor of the next) and not handed on twice.
         let mut next = 0u64;
-        let mut carried: Option<(u64, SpiralPoint, bool)> = None;
+        let mut carried: Vec<(u64, SpiralPoint, bool)> = Vec::new();
         pipeline::<(u64, SpiralPoint, bool), (PathPoint, bool, T), E>(
             |input: &mut Vec<(u64, SpiralPoint, bool)>| {
                 input.clear();
-                input.extend(carried);
+                input.append(&mut carried);
                 let start = input.len();
                 input.extend(spiral.by_ref().take(BATCH).map(|sp| {
                     next += 1;
@@ -279,13 +329,23 @@ impl ToolPath {
                 if input.len() == start {
                     input.clear();
                 }
-                carried = input.last().map(|&(index, sp, _)| (index, sp, false));
+                let run = input
+                    .last()
+                    .map_or(0, |&(index, _, _)| index / WARM_RUN * WARM_RUN);
+                carried.extend(
+                    input
+                        .iter()
+                        .filter(|&&(index, _, _)| index >= run)
+                        .map(|&(index, sp, _)| (index, sp, false)),
+                );
             },
             |_, input, output: &mut Vec<(PathPoint, bool, T)>| {
                 output.clear();
-                let mut previous: Option<PathPoint> = None;
+                let (mut previous, mut warm) = (None::<PathPoint>, None);
                 for &(index, sp, handed_on) in input {
-                    let (p, folds) = self.path_point(index, sp).map_err(|e| E::from(e.into()))?;
+                    let (p, folds) = self
+                        .warm_point(index, sp, &mut warm)
+                        .map_err(|e| E::from(e.into()))?;
                     if handed_on {
                         let t = pair(previous.as_ref(), &p)?;
                         output.push((p, folds, t));

@@ -240,13 +240,14 @@ impl<'a> Context<'a> {
         })
     }
 
-    /// The jet at tool position (ρ, θ), compensated afresh, the contact search started from
-    /// the nose angle `start` where it can ([`NoseCompensator::compensate_from`]).
-    fn jet_at(&self, rho: f64, theta: f64, start: Option<f64>) -> Result<Jet, UndefinedError> {
+    /// The jet at tool position (ρ, θ), compensated afresh (cold: at a lenslet rim the side of
+    /// the kink the contact is reported on sets the jet's slope, so it must not depend on where
+    /// the search started).
+    fn jet_at(&self, rho: f64, theta: f64) -> Result<Jet, UndefinedError> {
         let (s, c) = theta.sin_cos();
         let contact = self
             .nose
-            .compensate_from(self.surface, self.concavity, rho, c, s, start)?;
+            .compensate_from(self.surface, self.concavity, rho, c, s, None)?;
         let local = self.surface.local(contact.rho * c, contact.rho * s)?;
         Ok(Jet {
             c,
@@ -312,8 +313,6 @@ struct Segment<'c, 'a> {
     drho: f64,
     dtheta: f64,
     dz: f64,
-    /// The contact angle at the segment's start, where the searches inside it start.
-    start: f64,
 }
 
 /// A sample of e along a segment, with the sign σ applied when refining.
@@ -347,7 +346,7 @@ impl Segment<'_, '_> {
     /// e and its derivatives at an interior s.
     fn eval(&self, s: f64) -> Result<Node, UndefinedError> {
         let (rho, theta) = (self.rho(s), self.theta(s));
-        let j = self.ctx.jet_at(rho, theta, Some(self.start))?;
+        let j = self.ctx.jet_at(rho, theta)?;
         let e = self.z0 + s * self.dz - j.z_tip;
         let n = self.node(s, e, &j);
         if !(n.e.is_finite() && n.d1.is_finite()) {
@@ -365,12 +364,8 @@ impl Segment<'_, '_> {
         }
     }
 
-    /// Sample intervals: see the module docs. A tool that does not move has no error to look
-    /// for between its ends: one interval.
+    /// Sample intervals: see the module docs.
     fn intervals(&self) -> usize {
-        if self.drho == 0.0 && self.dtheta == 0.0 {
-            return 1;
-        }
         let nose = self.ctx.nose;
         let reach =
             self.rho0.abs().max(self.rho(1.0).abs()) + nose.nose_radius() * nose.half_angle().sin();
@@ -505,7 +500,6 @@ fn segment<'c, 'a>(
         drho: b.rho - a.rho,
         dtheta: b.theta - a.theta,
         dz: b.z - a.z,
-        start: a.contact_angle,
     };
     if !(seg.drho.is_finite() && seg.dtheta.is_finite() && seg.dz.is_finite()) {
         return Err(not_finite(b.rho, b.theta, "the step between path points"));
@@ -687,17 +681,16 @@ mod tests {
     }
 
     fn seg<'c, 'a>(ctx: &'c Context<'a>, a: (f64, f64), b: (f64, f64)) -> Segment<'c, 'a> {
-        let ja = ctx.jet_at(a.0, a.1, None).unwrap();
-        let zb = ctx.jet_at(b.0, b.1, None).unwrap().z_tip;
+        let za = ctx.jet_at(a.0, a.1).unwrap().z_tip;
+        let zb = ctx.jet_at(b.0, b.1).unwrap().z_tip;
         Segment {
             ctx,
             rho0: a.0,
             theta0: a.1,
-            z0: ja.z_tip,
+            z0: za,
             drho: b.0 - a.0,
             dtheta: b.1 - a.1,
-            dz: zb - ja.z_tip,
-            start: ja.angle,
+            dz: zb - za,
         }
     }
 
@@ -709,10 +702,10 @@ mod tests {
         // 1e-10 mm here); those of a free contact would not.
         let p = planner(r#"{"type":"asphere","radius_mm":20}"#, 3.0, 0.5);
         let ctx = Context::new(&p);
-        let j = ctx.jet_at(3.01, 0.2, None).unwrap();
+        let j = ctx.jet_at(3.01, 0.2).unwrap();
         assert_eq!(j.regime, Regime::PartEdge);
         assert!((j.rho_c - 3.0).abs() < 1e-12);
-        assert_eq!(ctx.jet_at(2.0, 0.2, None).unwrap().regime, Regime::Free);
+        assert_eq!(ctx.jet_at(2.0, 0.2).unwrap().regime, Regime::Free);
         let segment = seg(&ctx, (3.03, 0.1), (2.99, 0.5));
         let s = 0.4;
         let (h, x) = (1e-5, segment.eval(s).unwrap());
@@ -721,7 +714,7 @@ mod tests {
         assert!((x.d2 - (xp.d1 - xm.d1) / (2.0 * h)).abs() < 1e-8 * (1.0 + x.d2.abs()));
         let free = Jet {
             regime: Regime::Free,
-            ..ctx.jet_at(segment.rho(s), segment.theta(s), None).unwrap()
+            ..ctx.jet_at(segment.rho(s), segment.theta(s)).unwrap()
         };
         let (z1, _) = ctx.z_derivatives(&free, segment.drho, segment.dtheta);
         assert!((segment.dz - z1 - x.d1).abs() > 1e-4);

@@ -52,34 +52,60 @@ pub fn scaled(v: f64, decimals: u32) -> Option<i64> {
     Some(s)
 }
 
-/// Appends `units · 10^−decimals` with exactly `decimals` digits after the point.
+/// Appends `units · 10^−decimals` with exactly `decimals` digits after the point: the text is
+/// built right to left in a stack buffer (the decimals, the point, the integer part, the sign)
+/// and appended in one copy.
 pub fn push_scaled(buf: &mut Vec<u8>, units: i64, decimals: u32) {
-    if units < 0 {
-        buf.push(b'-');
+    let mut tmp = [0u8; 24];
+    let mut i = tmp.len();
+    let mut mag = units.unsigned_abs();
+    let mut fraction = decimals as usize;
+    while fraction >= 2 {
+        i -= 2;
+        put_pair(&mut tmp, i, mag % 100);
+        mag /= 100;
+        fraction -= 2;
     }
-    let mag = units.unsigned_abs();
-    let p = POW10[decimals as usize] as u64;
-    push_digits(buf, mag / p);
+    if fraction == 1 {
+        i -= 1;
+        tmp[i] = b'0' + (mag % 10) as u8;
+        mag /= 10;
+    }
     if decimals > 0 {
-        buf.push(b'.');
-        push_padded(buf, mag % p, decimals as usize);
+        i -= 1;
+        tmp[i] = b'.';
     }
+    i = put_digits(&mut tmp, i, mag);
+    if units < 0 {
+        i -= 1;
+        tmp[i] = b'-';
+    }
+    buf.extend_from_slice(&tmp[i..]);
 }
 
-/// Appends `n` (< 10^width) with exactly `width` digits, leading zeros included.
-fn push_padded(buf: &mut Vec<u8>, mut n: u64, width: usize) {
-    let mut tmp = [b'0'; 20];
-    let mut i = width;
-    while i >= 2 && n > 0 {
-        let k = (n % 100) as usize * 2;
-        n /= 100;
+/// Writes the two digits of `n` (< 100) at `tmp[i..i + 2]`.
+fn put_pair(tmp: &mut [u8], i: usize, n: u64) {
+    let k = n as usize * 2;
+    tmp[i..i + 2].copy_from_slice(&PAIRS[k..k + 2]);
+}
+
+/// Writes the decimal digits of `n` (at least one) ending just before `tmp[end]`; returns
+/// where they start.
+fn put_digits(tmp: &mut [u8], end: usize, mut n: u64) -> usize {
+    let mut i = end;
+    while n >= 100 {
         i -= 2;
-        tmp[i..i + 2].copy_from_slice(&PAIRS[k..k + 2]);
+        put_pair(tmp, i, n % 100);
+        n /= 100;
     }
-    if i >= 1 && n > 0 {
-        tmp[i - 1] = b'0' + n as u8;
+    if n >= 10 {
+        i -= 2;
+        put_pair(tmp, i, n);
+    } else {
+        i -= 1;
+        tmp[i] = b'0' + n as u8;
     }
-    buf.extend_from_slice(&tmp[..width]);
+    i
 }
 
 /// Appends `v` rounded to `decimals` digits; `false` (and nothing appended) if it cannot be.
@@ -99,26 +125,6 @@ const PAIRS: &[u8; 200] = b"0001020304050607080910111213141516171819\
 4041424344454647484950515253545556575859\
 6061626364656667686970717273747576777879\
 8081828384858687888990919293949596979899";
-
-fn push_digits(buf: &mut Vec<u8>, mut n: u64) {
-    let mut tmp = [0u8; 20];
-    let mut i = tmp.len();
-    while n >= 100 {
-        let k = (n % 100) as usize * 2;
-        n /= 100;
-        i -= 2;
-        tmp[i..i + 2].copy_from_slice(&PAIRS[k..k + 2]);
-    }
-    if n >= 10 {
-        let k = n as usize * 2;
-        i -= 2;
-        tmp[i..i + 2].copy_from_slice(&PAIRS[k..k + 2]);
-    } else {
-        i -= 1;
-        tmp[i] = b'0' + n as u8;
-    }
-    buf.extend_from_slice(&tmp[i..]);
-}
 
 #[cfg(test)]
 mod tests {
@@ -171,7 +177,9 @@ mod tests {
         for k in 0..2000u64 {
             for v in [k, n, n.wrapping_sub(1), u64::MAX - k] {
                 b.clear();
-                push_digits(&mut b, v);
+                let mut tmp = [0u8; 24];
+                let i = put_digits(&mut tmp, 24, v);
+                b.extend_from_slice(&tmp[i..]);
                 assert_eq!(b, v.to_string().as_bytes());
             }
             n = n.wrapping_mul(10).wrapping_add(k % 10 + 1);

@@ -331,6 +331,19 @@ impl NoseCompensator {
 const KINK_OFFSET: f64 = 1e-12;
 
 impl NoseCompensator {
+    /// How far the edge point at nose angle `a` lies beside the centre, `R(a)·sin a`; at the
+    /// whole arc's ends (where almost every point's arc ends) from the tabulated grid.
+    fn lateral(&self, a: f64) -> f64 {
+        let sin = if a == self.half_angle {
+            self.grid[self.samples][1]
+        } else if a == -self.half_angle {
+            self.grid[0][1]
+        } else {
+            a.sin()
+        };
+        self.edge_radius(a) * sin
+    }
+
     /// Nose angles just before and after each slope kink of the section under the arc
     /// ([`Surface::slope_kinks`]), and the measured edge's table angles inside the arc,
     /// ascending.
@@ -347,8 +360,8 @@ impl NoseCompensator {
         let mut angles = Vec::new();
         surface.slope_kinks(
             Line::radial(c, s),
-            rho_s + self.edge_radius(lo) * lo.sin(),
-            rho_s + self.edge_radius(hi) * hi.sin(),
+            rho_s + self.lateral(lo),
+            rho_s + self.lateral(hi),
             &mut angles,
         );
         let table: &[f64] = self.waviness.as_ref().map_or(&[], |w| w.angles());

@@ -524,12 +524,13 @@ impl Section<'_> {
     /// The maximum of F over `[lo, hi]` where F is concave
     /// ([`crate::surface::SectionBounds::nose_height_concavity`]): F′ never rises, so the sign
     /// of F′ anywhere says on which side the one maximum lies. Newton from `start` (0, or a
-    /// neighbour's contact; clamped to the arc) until a step would cross a slope kink (`kinks`: the angles just either side of
-    /// each, ascending), where the kink's sides are probed instead, or the arc's end. With
-    /// −F″ ≥ `m`, the maximum lies within |F′(x)|/m of a sample x and exceeds F(x) by at most
-    /// F′(x)²/(2m): a sample x with |F′(x)|/m ≤ 10⁻¹⁰ rad is the answer (its height then
-    /// within 10⁻²⁰·m mm of the maximum, its contact within 10⁻¹⁰·r). Otherwise, once the
-    /// maximum is bracketed, [`Section::refine_from`] closes the bracket.
+    /// neighbour's contact; clamped to the arc) until a step would cross a slope kink
+    /// (`kinks`: the angles either side of each, ascending), where the kink's sides are probed
+    /// instead, or the arc's end. With −F″ ≥ `m`, the maximum lies within |F′(x)|/m of a
+    /// sample x and exceeds F(x) by at most F′(x)²/(2m): a sample x with |F′(x)|/m ≤ 10⁻¹⁰
+    /// rad is the answer (its height then within 10⁻²⁰·m mm of the maximum, its contact within
+    /// 10⁻¹⁰·r). Otherwise, once the maximum is bracketed, [`Section::refine_from`] closes the
+    /// bracket.
     fn concave_peak(
         &self,
         kinks: &[f64],

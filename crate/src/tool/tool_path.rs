@@ -24,7 +24,7 @@ const BATCH: usize = 16_384;
 /// of a run starts its contact search cold, every other one from its predecessor's contact
 /// ([`NoseCompensator::compensate_from`]). A point's result thus depends on its index alone,
 /// however the path is cut into batches, slices or threads, as long as each piece starts on a
-/// run boundary or recomputes the run it starts in. A divisor of [`BATCH`].
+/// run boundary or recomputes the run it starts in. A divisor of the batch size.
 pub const WARM_RUN: u64 = 64;
 
 /// The spiral of a strategy on `surface`, by the builder of its sampling: [`Spiral::new`] for

@@ -837,7 +837,7 @@ export class JobForm {
         this.show(this.job);
         this.root.querySelector(`[data-field="${t.dataset.field}"]`)?.closest('.row')
           ?.querySelector('.file-state')?.replaceChildren(loaded(file.name, text));
-        this.onChange();
+        this.notify();
       });
       return;
     } else if (t.dataset.kind === 'json') {
@@ -867,6 +867,16 @@ export class JobForm {
     } else {
       return;
     }
+    // A field's `change` (on leaving it) repeats what its `input` events did: it re-plans only
+    // if the job differs from the one last handed on, or Cancel (which takes the focus from the
+    // field it was typed in) would be followed 300 ms later by the same plan again.
+    if (e.type === 'change' && JSON.stringify(this.job) === this.notified) return;
+    this.notify();
+  }
+
+  /** Hands the edited job on (`onChange`), remembering it. */
+  notify() {
+    this.notified = JSON.stringify(this.job);
     this.onChange();
   }
 
@@ -936,7 +946,7 @@ export class JobForm {
       return;
     }
     this.show(this.job);
-    this.onChange();
+    this.notify();
   }
 
   /** The first problem of the text typed in a number field, or null: the job is not planned

@@ -146,8 +146,11 @@ for (const backend of ['WebGPU', 'WebGL2']) {
       await page.waitForFunction((v) => document.querySelector('#progress').value > v, first, { timeout: 60_000 });
       assert.equal(await page.evaluate(() => document.body.dataset.state), 'planning');
       assert.equal(await page.evaluate(() => document.querySelector('#progress').max), 10_000_001);
+      // Cancel takes the focus from the field just typed in: its `change` must not re-plan.
       await page.click('#cancel');
       await waitForState(page, ['cancelled']);
+      await page.waitForTimeout(700);
+      assert.equal(await page.evaluate(() => document.body.dataset.state), 'cancelled');
       assert.equal(await page.isHidden('#busy'), true);
       await setField(page, 'strategy.feed_mm_per_rev', '0.01');
       await setField(page, 'strategy.sampling.points_per_rev', '720');

@@ -867,10 +867,12 @@ export class JobForm {
     } else {
       return;
     }
-    // A field's `change` (on leaving it) repeats what its `input` events did: it re-plans only
-    // if the job differs from the one last handed on, or Cancel (which takes the focus from the
-    // field it was typed in) would be followed 300 ms later by the same plan again.
-    if (e.type === 'change' && JSON.stringify(this.job) === this.notified) return;
+    // A typed field's `change` (on leaving it) repeats what its `input` events did: it re-plans
+    // only if the job differs from the one last handed on, or Cancel (which takes the focus
+    // from the field it was typed in) would be followed 300 ms later by the same plan again.
+    // A list's `change` is its only event and always counts.
+    const repeated = e.type === 'change' && t.tagName === 'INPUT' && t.type !== 'file';
+    if (repeated && JSON.stringify(this.job) === this.notified) return;
     this.notify();
   }
 

@@ -5,6 +5,7 @@
 
 use crate::path::PathPoint;
 use crate::surface::{Surface, UndefinedError};
+use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
 
 /// The decimated path as line segments (x, y, z pairs, z the sag at the contact point so the
@@ -12,15 +13,34 @@ use std::f64::consts::TAU;
 /// [`DISPLAY_REVOLUTIONS`] are drawn (hundreds of passes 10 µm apart are denser than the
 /// pixels), and along those every `stride`-th point, so that at most about `budget` points are
 /// kept.
-#[derive(Debug, Clone, Default)]
+///
+/// A slice of the path (the page's workers) is drawn by a copy [started](DisplayPath::starting_at)
+/// at its first index and [merged](DisplayPath::merge) in order: the same segments as one walk.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct DisplayPath {
     every: u64,
     stride: u64,
     theta0: Option<f64>,
-    last: Option<(u64, [f32; 3])>,
-    /// Segments: two x y z points each, mm.
+    last: Option<[f32; 3]>,
+    /// Segments: two x y z points each, mm (not serialised: they travel as an array).
+    #[serde(skip)]
     pub segments: Vec<f32>,
     seen: u64,
+    /// How the copy began: its first kept point, joined to the point kept before it, or a
+    /// revolution left out (the line broken).
+    head: Head,
+}
+
+/// The first event of a display copy.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+enum Head {
+    /// No point yet.
+    #[default]
+    Empty,
+    /// A point kept first.
+    Joins([f32; 3]),
+    /// A point left out first.
+    Broken,
 }
 
 /// The most revolutions drawn.
@@ -40,6 +60,31 @@ impl DisplayPath {
         }
     }
 
+    /// The copy of the slice of the path from its `first` point on, `theta0` the angle of the
+    /// path's first point.
+    pub fn starting_at(mut self, first: u64, theta0: f64) -> Self {
+        (self.seen, self.theta0) = (first, Some(theta0));
+        self
+    }
+
+    /// This copy followed by `later`'s, the copy of the slice right after it.
+    pub fn merge(mut self, mut later: DisplayPath) -> Self {
+        if let (Some(prev), Head::Joins(xyz)) = (self.last, later.head) {
+            self.segments.extend_from_slice(&prev);
+            self.segments.extend_from_slice(&xyz);
+        }
+        self.segments.append(&mut later.segments);
+        if self.head == Head::Empty {
+            self.head = later.head;
+        }
+        if later.head != Head::Empty {
+            self.last = later.last;
+        }
+        self.seen = later.seen;
+        self.theta0 = self.theta0.or(later.theta0);
+        self
+    }
+
     /// Only every this many revolutions is drawn.
     pub fn revolution_step(&self) -> u64 {
         self.every
@@ -54,6 +99,9 @@ impl DisplayPath {
         self.seen += 1;
         if !rev.is_multiple_of(self.every) && p.rho != 0.0 {
             self.last = None;
+            if self.head == Head::Empty {
+                self.head = Head::Broken;
+            }
             return;
         }
         if !on_stride {
@@ -61,11 +109,14 @@ impl DisplayPath {
         }
         let (s, c) = p.theta.sin_cos();
         let xyz = [(p.rho * c) as f32, (p.rho * s) as f32, p.contact[2] as f32];
-        if let Some((_, prev)) = self.last {
+        if let Some(prev) = self.last {
             self.segments.extend_from_slice(&prev);
             self.segments.extend_from_slice(&xyz);
         }
-        self.last = Some((rev, xyz));
+        if self.head == Head::Empty {
+            self.head = Head::Joins(xyz);
+        }
+        self.last = Some(xyz);
     }
 
     /// Segments kept.

@@ -351,6 +351,34 @@ impl<W: Write> NcWriter<W> {
         })
     }
 
+    /// Goes on with a program whose header and first blocks another writer wrote (a slice of
+    /// the path, [`crate::plan::PlanSlice`]): writes nothing until the blocks after the
+    /// [context](NcWriter::context).
+    pub fn resume(out: W, spec: &OutputSpec, spindle_rpm: f64) -> Self {
+        Self {
+            out,
+            blocks: Blocks::new(spec, spindle_rpm),
+            feed_mm_per_min: spec.feed_mm_per_min.unwrap_or(0.0),
+            plunge_feed: spec.plunge_feed_mm_per_min,
+            clearance: spec.clearance_mm,
+            last_z: None,
+            bytes: 0,
+        }
+    }
+
+    /// Takes `p`, a point before the slice, as the writer of the whole program would, without
+    /// writing it: the blocks after the last two such points carry the same F words. `z_slide`
+    /// as [`Self::point_split`]'s.
+    pub fn context(&mut self, p: &PathPoint, z_slide: Option<f64>) -> Result<(), NcError> {
+        if self.blocks.started() {
+            let w = self.blocks.words(p, z_slide, 0.0)?;
+            self.blocks.block(p, w)
+        } else {
+            self.blocks.start(p.theta);
+            Ok(())
+        }
+    }
+
     /// Writes the block that reaches `p` (the approach for the first point).
     pub fn point(&mut self, p: &PathPoint) -> Result<(), NcError> {
         let w = self.blocks.words(p, None, 0.0)?;
@@ -400,7 +428,17 @@ impl<W: Write> NcWriter<W> {
     }
 
     /// Writes the retract and the end; returns the program's size in bytes.
-    pub fn finish(mut self) -> Result<u64, NcError> {
+    pub fn finish(self) -> Result<u64, NcError> {
+        self.finish_slice(true)
+    }
+
+    /// Writes the retract and the end when `ends` (the path ends in this writer's slice);
+    /// returns the bytes written.
+    pub fn finish_slice(mut self, ends: bool) -> Result<u64, NcError> {
+        if !ends {
+            self.out.flush()?;
+            return Ok(self.bytes);
+        }
         let b = &mut self.blocks;
         b.line.clear();
         if b.feed_mode().per_block() {

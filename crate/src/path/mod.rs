@@ -19,11 +19,11 @@ pub use spiral::{MAX_POINTS, Spiral, SpiralPoint};
 use crate::field::FieldError;
 use crate::job::JobError;
 use crate::surface::UndefinedError;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 /// One point of the tool path.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct PathPoint {
     /// Position along the path, from 0.
     pub index: u64,

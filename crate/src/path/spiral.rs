@@ -579,6 +579,30 @@ pub struct SpiralPoints {
 impl Iterator for SpiralPoints {
     type Item = SpiralPoint;
 
+    /// The `n`-th next point: in one step for constant-angle and explicit spirals (a point
+    /// there is a function of its index), by walking the step rule otherwise. A slice of the
+    /// path (the page's workers) starts here.
+    fn nth(&mut self, n: usize) -> Option<SpiralPoint> {
+        let points = self.spiral.explicit.as_ref().map_or(0, |p| p.len());
+        match &mut self.state {
+            _ if self.done || n == 0 => {}
+            State::Explicit { k } => {
+                *k = k.saturating_add(n).min(points);
+                self.done = *k >= points;
+            }
+            State::Angle { k, steps, .. } => {
+                *k = k.saturating_add(n as u64).min(*steps + 1);
+                self.done = *k > *steps;
+            }
+            State::Arc { .. } | State::Zoned { .. } => {
+                for _ in 0..n {
+                    self.next()?;
+                }
+            }
+        }
+        self.next()
+    }
+
     fn next(&mut self) -> Option<SpiralPoint> {
         if self.done {
             return None;
@@ -652,6 +676,38 @@ impl Iterator for SpiralPoints {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn nth_is_the_walk() {
+        let spirals = [
+            Sampling::ConstantAngle { points_per_rev: 7 },
+            Sampling::ConstantArc {
+                arc_length_mm: 0.05,
+                max_angle_step_deg: 30.0,
+            },
+        ]
+        .map(|s| Spiral::new(1.0, 0.1, &s, Direction::Cw, 10.0).unwrap());
+        let mut list: Vec<SpiralPoint> = spirals[0].points().step_by(3).collect();
+        list.extend(
+            spirals[0]
+                .points()
+                .last()
+                .filter(|p| p.rho < list[list.len() - 1].rho),
+        );
+        let explicit =
+            Spiral::from_points(0.1, &Sampling::ConstantAngle { points_per_rev: 7 }, list).unwrap();
+        for spiral in spirals.iter().chain([&explicit]) {
+            let walk: Vec<SpiralPoint> = spiral.points().collect();
+            for n in [0, 1, 2, 5, walk.len() - 1, walk.len(), walk.len() + 3] {
+                let mut it = spiral.points();
+                assert_eq!(it.nth(n), walk.get(n).copied(), "n {n}");
+                assert_eq!(it.next(), walk.get(n + 1).copied(), "after n {n}");
+                let mut it = spiral.points();
+                it.next();
+                assert_eq!(it.nth(n), walk.get(n + 1).copied(), "1 + n {n}");
+            }
+        }
+    }
 
     #[test]
     fn arc_length_is_the_integral() {

@@ -4,21 +4,25 @@
 //! compensated in batches of 16 384 on all cores (natively; one thread in the browser) and
 //! handed in order to every sink, so memory stays flat whatever the point count and the output
 //! does not depend on the number of threads; only the display copy
-//! ([`crate::display::DisplayPath`]) keeps points, decimated to a fixed budget.
+//! ([`crate::display::DisplayPath`]) keeps points, decimated to a fixed budget. A job without
+//! passes or dynamics can also be planned in slices of its indices that join into the same
+//! program, report and drawing ([`PlanSlice`], the page's workers).
 
 pub mod admission;
 mod program;
+mod slice;
 
 pub use admission::Limits;
+pub use slice::PlanSlice;
 
 use crate::display::DisplayPath;
 use crate::dynamics::{Dynamics, DynamicsError};
 use crate::field::FieldError;
 use crate::job::{Compensation, Job, JobError, Sampling, SplitSpec};
 use crate::nc::program::ChildFiles;
-use crate::nc::{CsvWriter, FtsTableWriter, Header, NcError, NcWriter};
+use crate::nc::{CsvWriter, FtsTableWriter, Header, NcError};
 use crate::path::{PathError, PathPoint, hcaa};
-use crate::progress::{Progress, ProgressFn, Stage};
+use crate::progress::{Progress, ProgressFn};
 use crate::report::{Report, Stats};
 use crate::surface::UndefinedError;
 use crate::tool::ToolPath;
@@ -352,32 +356,20 @@ impl Planner {
         if self.job().program.is_some() {
             return self.run_program(sinks, progress, header);
         }
-        let mut counter = std::io::sink();
-        let nc_out: &mut dyn Write = match sinks.nc {
-            Some(w) => w,
-            None => &mut counter,
-        };
-        let mut nc = NcWriter::new(nc_out, &self.job().output, &header)?;
-        let z_slide = sinks.z_slide;
-        let mut extras = Extras::new(
-            self.job(),
-            sinks.csv,
-            sinks.fts_table,
-            sinks.display,
-            z_slide,
-        )?;
-        self.path
-            .for_each_point(Stage::Path, progress, &mut |p, folds| {
-                match extras.slide(p)? {
-                    None => nc.point(p)?,
-                    Some(z) => nc.point_split(p, z)?,
-                }
-                extras.point(p, folds)
-            })?;
-        let nc_bytes = nc.finish()?;
-        let stats = extras.finish()?;
+        let slice = self.walk(0..u64::MAX, Some(&header), sinks, progress)?;
+        self.report_of(&slice.stats, slice.nc_bytes, progress)
+    }
+
+    /// The report of a path whose figures are `stats` and whose program has `nc_bytes`: the
+    /// concave zones are searched here.
+    pub fn report_of(
+        &self,
+        stats: &Stats,
+        nc_bytes: u64,
+        progress: &mut ProgressFn,
+    ) -> Result<Report, PlanError> {
         let zones = self.path.concave_zones(progress)?;
-        Ok(Report::new(&self.path, &stats, nc_bytes, zones))
+        Ok(Report::new(&self.path, stats, nc_bytes, zones))
     }
 }
 

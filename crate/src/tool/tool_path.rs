@@ -4,7 +4,8 @@
 //! ([`crate::plan`]) streams into the writers. The path is never stored: [`ToolPath::points`]
 //! computes it one point at a time, [`ToolPath::for_each_point`] in batches on every core,
 //! [`ToolPath::for_each_pair`] with a function of each point and its predecessor computed beside
-//! it (an analysis's per-segment work). Each point's contact search starts from its
+//! it (an analysis's per-segment work), [`ToolPath::for_each_pair_in`] the same over a slice of
+//! the indices (the page's workers each plan one, [`crate::plan::PlanSlice`]). Each point's contact search starts from its
 //! predecessor's contact within runs of [`WARM_RUN`] points aligned on the index (the warm start
 //! of [`crate::tool::one_way`]), so a point is the same bits however the path is computed.
 
@@ -26,6 +27,15 @@ const BATCH: usize = 16_384;
 /// however the path is cut into batches, slices or threads, as long as each piece starts on a
 /// run boundary or recomputes the run it starts in. A divisor of the batch size.
 pub const WARM_RUN: u64 = 64;
+
+/// What a walk over a slice of the path saw ([`ToolPath::for_each_pair_in`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Walked {
+    /// Points handed on.
+    pub points: u64,
+    /// The path ends within the slice: no point lies past it.
+    pub ended: bool,
+}
 
 /// The spiral of a strategy on `surface`, by the builder of its sampling: [`Spiral::new`] for
 /// constant angle and constant arc, [`crate::path::hcaa::spiral`] for `hcaa` and `adaptive`
@@ -162,6 +172,11 @@ impl ToolPath {
     /// The one-way tip height over (ρ, θ) ([`NoseCompensator::tip_height`]).
     pub fn tip_height(&self, rho: f64, theta: f64) -> Result<f64, UndefinedError> {
         self.nose.tip_height(self.surface(), rho, theta)
+    }
+
+    /// The path's first point (a slice's display copy counts revolutions from its angle).
+    pub fn first_point(&self) -> Result<PathPoint, UndefinedError> {
+        self.points().next().unwrap_or(Ok(PathPoint::default()))
     }
 
     /// The compensated path, streamed.
@@ -309,25 +324,57 @@ impl ToolPath {
         pair: impl Fn(Option<&PathPoint>, &PathPoint) -> Result<T, E> + Sync,
         visit: &mut dyn FnMut(&PathPoint, bool, &T) -> Result<(), E>,
     ) -> Result<u64, E> {
-        let total = self.spiral.point_count_hint();
+        let walked = self.for_each_pair_in(0..u64::MAX, stage, progress, pair, visit)?;
+        Ok(walked.points)
+    }
+
+    /// [`Self::for_each_pair`] over the points whose index lies in `range` only: a slice of the
+    /// path, computed exactly as in the whole walk (the run the slice starts in is compensated
+    /// again from its start, not handed on), so that slices planned apart (the page's workers)
+    /// join into the whole path bit for bit. `range.end` may lie past the path's end.
+    pub fn for_each_pair_in<T: Send, E: From<PathError> + Send>(
+        &self,
+        range: std::ops::Range<u64>,
+        stage: Stage,
+        progress: &mut ProgressFn,
+        pair: impl Fn(Option<&PathPoint>, &PathPoint) -> Result<T, E> + Sync,
+        visit: &mut dyn FnMut(&PathPoint, bool, &T) -> Result<(), E>,
+    ) -> Result<Walked, E> {
+        // The predecessor of the first point, and the run it lies in, are computed first.
+        let begin = range.start.saturating_sub(1) / WARM_RUN * WARM_RUN;
+        let total = self
+            .spiral
+            .point_count_hint()
+            .min(range.end)
+            .saturating_sub(range.start);
         let mut done = 0u64;
         let mut spiral = self.spiral.points();
-        // A batch's points with their indices and whether they are handed on: in every batch
-        // but the first, the first points are the last run of the batch before, compensated
-        // again (the last one is the predecessor of the next) and not handed on twice.
-        let mut next = 0u64;
+        let mut next = begin;
+        let mut ended = match usize::try_from(begin) {
+            Ok(0) => false,
+            Ok(n) => spiral.nth(n - 1).is_none(),
+            Err(_) => true,
+        };
         let mut carried: Vec<(u64, SpiralPoint, bool)> = Vec::new();
         pipeline::<(u64, SpiralPoint, bool), (PathPoint, bool, T), E>(
             |input: &mut Vec<(u64, SpiralPoint, bool)>| {
                 input.clear();
+                let room = (BATCH as u64).min(range.end.saturating_sub(next)) as usize;
+                if ended || room == 0 {
+                    // Whether the path goes on past the slice.
+                    ended = ended || spiral.clone().next().is_none();
+                    return;
+                }
                 input.append(&mut carried);
                 let start = input.len();
-                input.extend(spiral.by_ref().take(BATCH).map(|sp| {
+                input.extend(spiral.by_ref().take(room).map(|sp| {
                     next += 1;
-                    (next - 1, sp, true)
+                    (next - 1, sp, next > range.start)
                 }));
+                ended = input.len() - start < room;
                 if input.len() == start {
                     input.clear();
+                    return;
                 }
                 let run = input
                     .last()
@@ -372,6 +419,9 @@ impl ToolPath {
             done,
             total: done,
         });
-        Ok(done)
+        Ok(Walked {
+            points: done,
+            ended,
+        })
     }
 }

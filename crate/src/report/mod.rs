@@ -16,105 +16,15 @@
 //! [`crate::tool`]), `two_way_loop_points` their points and `first_two_way_loop_at` the
 //! first; always 0 (and null) for one-way, which cannot loop.
 
-use crate::path::{Location, PathPoint};
+mod stats;
+
+pub use stats::Stats;
+
+use crate::path::Location;
 use crate::tool::ToolPath;
 use crate::tool::reach::{ConcaveZone, Reach};
 use serde::Serialize;
 use std::f64::consts::TAU;
-
-/// Running figures of a path.
-#[derive(Debug, Clone, Default)]
-pub struct Stats {
-    /// Points seen.
-    pub points: u64,
-    first_theta: f64,
-    last: Option<PathPoint>,
-    z_min: f64,
-    z_max: f64,
-    sag_min: f64,
-    sag_max: f64,
-    max_slope: f64,
-    max_slope_at: (f64, f64),
-    arc_end: u64,
-    first_arc_end: Option<(f64, f64)>,
-    before_last: Option<PathPoint>,
-    last_dx_sign: f64,
-    x_reversals: u64,
-    /// Largest |d²X/dC²|, mm/rad².
-    max_x_curv: f64,
-    max_x_curv_at: (f64, f64),
-    loops: u64,
-    loop_points: u64,
-    first_loop: Option<(f64, f64)>,
-    /// Index of the last loop point, to tell runs apart.
-    last_loop_index: Option<u64>,
-}
-
-impl Stats {
-    /// Adds one point.
-    pub fn add(&mut self, p: &PathPoint) {
-        match &self.last {
-            None => {
-                self.first_theta = p.theta;
-                (self.z_min, self.z_max) = (p.z, p.z);
-                (self.sag_min, self.sag_max) = (p.contact[2], p.contact[2]);
-            }
-            Some(q) => {
-                let slope = ((p.z - q.z) / (p.theta - q.theta).to_degrees()).abs();
-                if slope > self.max_slope {
-                    self.max_slope = slope;
-                    self.max_slope_at = (p.rho, p.theta);
-                }
-                self.z_min = self.z_min.min(p.z);
-                self.z_max = self.z_max.max(p.z);
-                self.sag_min = self.sag_min.min(p.contact[2]);
-                self.sag_max = self.sag_max.max(p.contact[2]);
-                let dx = p.rho - q.rho;
-                if dx != 0.0 {
-                    let sign = dx.signum();
-                    if self.last_dx_sign != 0.0 && sign != self.last_dx_sign {
-                        self.x_reversals += 1;
-                    }
-                    self.last_dx_sign = sign;
-                }
-                if let Some(o) = &self.before_last {
-                    let (h1, h2) = ((q.theta - o.theta).abs(), (p.theta - q.theta).abs());
-                    if h1 > 0.0 && h2 > 0.0 {
-                        let d2 =
-                            (2.0 * ((p.rho - q.rho) / h2 - (q.rho - o.rho) / h1) / (h1 + h2)).abs();
-                        if d2 > self.max_x_curv {
-                            self.max_x_curv = d2;
-                            self.max_x_curv_at = (q.rho, q.theta);
-                        }
-                    }
-                }
-            }
-        }
-        self.before_last = self.last;
-        if p.at_arc_end {
-            self.arc_end += 1;
-            self.first_arc_end.get_or_insert((p.rho, p.theta));
-        }
-        self.points += 1;
-        self.last = Some(*p);
-    }
-
-    /// Records that the two-way offset folds at `p`, which was just [added](Stats::add).
-    pub fn add_loop_point(&mut self, p: &PathPoint) {
-        if self.last_loop_index.is_none_or(|i| i + 1 != p.index) {
-            self.loops += 1;
-        }
-        self.last_loop_index = Some(p.index);
-        self.loop_points += 1;
-        self.first_loop.get_or_insert((p.rho, p.theta));
-    }
-
-    /// Total spindle angle, radians.
-    pub fn total_angle(&self) -> f64 {
-        self.last
-            .map_or(0.0, |l| (l.theta - self.first_theta).abs())
-    }
-}
 
 /// What a job will cost.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -113,6 +113,27 @@ export class Planned {
 }
 
 /**
+ * One slice of a plan ([`plan_slice`]).
+ */
+export class PlannedSlice {
+    private constructor();
+    free(): void;
+    [Symbol.dispose](): void;
+    /**
+     * Its program text (empty unless asked for).
+     */
+    readonly nc: Uint8Array;
+    /**
+     * Its figures and display state as JSON, for [`plan_merge`].
+     */
+    readonly part: string;
+    /**
+     * Its display segments, for [`plan_merge`].
+     */
+    readonly segments: Float32Array;
+}
+
+/**
  * Mean-power and cylinder maps of a progressive lens, for the page's map panel.
  */
 export class PowerMaps {
@@ -321,6 +342,22 @@ export function nc_program(job: any, progress: Function): Uint8Array;
 export function plan(job: any, progress: Function): Planned;
 
 /**
+ * The plan of `job` from its slices ([`plan_slice`], in order): `parts` their
+ * [`PlannedSlice::part`]s as a JSON array, `segments` their segments one after the other,
+ * `counts` how many numbers each has. The same report and drawing as [`plan`]; the concave
+ * zones are searched here.
+ */
+export function plan_merge(job: any, parts: string, segments: Float32Array | number[], counts: Uint32Array | number[], progress: Function): Planned;
+
+/**
+ * Plans the points `first` ≤ index < `end` of `job` (`end` infinite: to the path's end), the
+ * work of one of the page's workers ([`Planner::run_slice`]): their display copy and report
+ * figures, and their program text when `nc` (the header in the first slice, the end in the
+ * last). The texts of consecutive slices concatenated are the program `nc_program` writes.
+ */
+export function plan_slice(job: any, first: number, end: number, nc: boolean, progress: Function): PlannedSlice;
+
+/**
  * The power maps of `job` when its surface is a progressive lens (with the lens's refractive
  * index), else `undefined`.
  */
@@ -338,6 +375,14 @@ export function sag(job: any, xy: Float64Array | number[]): Float64Array;
  * as JSON.
  */
 export function setup_offsets(job: any, params: string): string;
+
+/**
+ * Whether `job` can be planned in slices on several workers, as JSON:
+ * `{"points": N, "sliced": true}`, or `{"points": N, "sliced": false, "why": "…"}` (a program
+ * with passes, machine dynamics), `N` the path's point count (an estimate for constant-arc and
+ * surface-dependent samplings).
+ */
+export function slicing(job: any, progress: Function): string;
 
 /**
  * Verifies the program `name` (`text`) against `job`; `names` and `texts` are the other files
@@ -358,6 +403,7 @@ export interface InitOutput {
     readonly __wbg_accuracy_free: (a: number, b: number) => void;
     readonly __wbg_corrected_free: (a: number, b: number) => void;
     readonly __wbg_planned_free: (a: number, b: number) => void;
+    readonly __wbg_plannedslice_free: (a: number, b: number) => void;
     readonly __wbg_powermaps_free: (a: number, b: number) => void;
     readonly __wbg_verified_free: (a: number, b: number) => void;
     readonly __wbg_viewer_free: (a: number, b: number) => void;
@@ -386,6 +432,8 @@ export interface InitOutput {
     readonly machine_presets: () => [number, number];
     readonly nc_program: (a: any, b: any) => [number, number, number, number];
     readonly plan: (a: any, b: any) => [number, number, number];
+    readonly plan_merge: (a: any, b: number, c: number, d: number, e: number, f: number, g: number, h: any) => [number, number, number];
+    readonly plan_slice: (a: any, b: number, c: number, d: number, e: any) => [number, number, number];
     readonly planned_csv_file_name: (a: number) => [number, number];
     readonly planned_mesh_indices: (a: number) => [number, number];
     readonly planned_mesh_normals: (a: number) => [number, number];
@@ -396,6 +444,9 @@ export interface InitOutput {
     readonly planned_revolution_step: (a: number) => number;
     readonly planned_z_max: (a: number) => number;
     readonly planned_z_min: (a: number) => number;
+    readonly plannedslice_nc: (a: number) => [number, number];
+    readonly plannedslice_part: (a: number) => [number, number];
+    readonly plannedslice_segments: (a: number) => [number, number];
     readonly power_maps: (a: any, b: number) => [number, number, number];
     readonly powermaps_cylinder_d: (a: number) => [number, number];
     readonly powermaps_mean_d: (a: number) => [number, number];
@@ -403,6 +454,7 @@ export interface InitOutput {
     readonly powermaps_step_mm: (a: number) => number;
     readonly sag: (a: any, b: number, c: number) => [number, number, number, number];
     readonly setup_offsets: (a: any, b: number, c: number) => [number, number, number, number];
+    readonly slicing: (a: any, b: any) => [number, number, number, number];
     readonly verified_deviation_um: (a: number) => [number, number];
     readonly verified_report: (a: number) => [number, number];
     readonly verified_size: (a: number) => number;
@@ -423,8 +475,8 @@ export interface InitOutput {
     readonly viewer_z_exaggeration: (a: number) => number;
     readonly viewer_zoom: (a: number, b: number) => void;
     readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_65: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_66: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_71: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_72: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h6a9a4c771fb11aad: (a: number, b: number, c: any, d: any) => void;
     readonly wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h9a591c57c7a39bce: (a: number, b: number, c: any) => void;

@@ -312,6 +312,65 @@ export class Planned {
 if (Symbol.dispose) Planned.prototype[Symbol.dispose] = Planned.prototype.free;
 
 /**
+ * One slice of a plan ([`plan_slice`]).
+ */
+export class PlannedSlice {
+    static __wrap(ptr) {
+        const obj = Object.create(PlannedSlice.prototype);
+        obj.__wbg_ptr = ptr;
+        PlannedSliceFinalization.register(obj, obj.__wbg_ptr, obj);
+        return obj;
+    }
+    __destroy_into_raw() {
+        const ptr = this.__wbg_ptr;
+        this.__wbg_ptr = 0;
+        PlannedSliceFinalization.unregister(this);
+        return ptr;
+    }
+    free() {
+        const ptr = this.__destroy_into_raw();
+        wasm.__wbg_plannedslice_free(ptr, 0);
+    }
+    /**
+     * Its program text (empty unless asked for).
+     * @returns {Uint8Array}
+     */
+    get nc() {
+        const ret = wasm.plannedslice_nc(this.__wbg_ptr);
+        var v1 = getArrayU8FromWasm0(ret[0], ret[1]).slice();
+        wasm.__wbindgen_free(ret[0], ret[1] * 1, 1);
+        return v1;
+    }
+    /**
+     * Its figures and display state as JSON, for [`plan_merge`].
+     * @returns {string}
+     */
+    get part() {
+        let deferred1_0;
+        let deferred1_1;
+        try {
+            const ret = wasm.plannedslice_part(this.__wbg_ptr);
+            deferred1_0 = ret[0];
+            deferred1_1 = ret[1];
+            return getStringFromWasm0(ret[0], ret[1]);
+        } finally {
+            wasm.__wbindgen_free(deferred1_0, deferred1_1, 1);
+        }
+    }
+    /**
+     * Its display segments, for [`plan_merge`].
+     * @returns {Float32Array}
+     */
+    get segments() {
+        const ret = wasm.plannedslice_segments(this.__wbg_ptr);
+        var v1 = getArrayF32FromWasm0(ret[0], ret[1]).slice();
+        wasm.__wbindgen_free(ret[0], ret[1] * 4, 4);
+        return v1;
+    }
+}
+if (Symbol.dispose) PlannedSlice.prototype[Symbol.dispose] = PlannedSlice.prototype.free;
+
+/**
  * Mean-power and cylinder maps of a progressive lens, for the page's map panel.
  */
 export class PowerMaps {
@@ -916,6 +975,60 @@ export function plan(job, progress) {
 }
 
 /**
+ * The plan of `job` from its slices ([`plan_slice`], in order): `parts` their
+ * [`PlannedSlice::part`]s as a JSON array, `segments` their segments one after the other,
+ * `counts` how many numbers each has. The same report and drawing as [`plan`]; the concave
+ * zones are searched here.
+ * @param {any} job
+ * @param {string} parts
+ * @param {Float32Array | number[]} segments
+ * @param {Uint32Array | number[]} counts
+ * @param {Function} progress
+ * @returns {Planned}
+ */
+export function plan_merge(job, parts, segments, counts, progress) {
+    let ptr0, len0, ptr1, len1, ptr2, len2;
+    try {
+        ptr0 = passStringToWasm0(parts, wasm.__wbindgen_malloc, wasm.__wbindgen_realloc);
+        len0 = WASM_VECTOR_LEN;
+        ptr1 = passArrayF32ToWasm0(segments, wasm.__wbindgen_malloc);
+        len1 = WASM_VECTOR_LEN;
+        ptr2 = passArray32ToWasm0(counts, wasm.__wbindgen_malloc);
+        len2 = WASM_VECTOR_LEN;
+    } catch (e) {
+        if (ptr2) { wasm.__wbindgen_free(ptr2, len2 * 4, 4); }
+        if (ptr1) { wasm.__wbindgen_free(ptr1, len1 * 4, 4); }
+        if (ptr0) { wasm.__wbindgen_free(ptr0, len0 * 1, 1); }
+        throw e;
+    }
+    const ret = wasm.plan_merge(job, ptr0, len0, ptr1, len1, ptr2, len2, progress);
+    if (ret[2]) {
+        throw takeFromExternrefTable0(ret[1]);
+    }
+    return Planned.__wrap(ret[0]);
+}
+
+/**
+ * Plans the points `first` ≤ index < `end` of `job` (`end` infinite: to the path's end), the
+ * work of one of the page's workers ([`Planner::run_slice`]): their display copy and report
+ * figures, and their program text when `nc` (the header in the first slice, the end in the
+ * last). The texts of consecutive slices concatenated are the program `nc_program` writes.
+ * @param {any} job
+ * @param {number} first
+ * @param {number} end
+ * @param {boolean} nc
+ * @param {Function} progress
+ * @returns {PlannedSlice}
+ */
+export function plan_slice(job, first, end, nc, progress) {
+    const ret = wasm.plan_slice(job, first, end, nc, progress);
+    if (ret[2]) {
+        throw takeFromExternrefTable0(ret[1]);
+    }
+    return PlannedSlice.__wrap(ret[0]);
+}
+
+/**
  * The power maps of `job` when its surface is a progressive lens (with the lens's refractive
  * index), else `undefined`.
  * @param {any} job
@@ -975,6 +1088,34 @@ export function setup_offsets(job, params) {
         return getStringFromWasm0(ptr2, len2);
     } finally {
         wasm.__wbindgen_free(deferred3_0, deferred3_1, 1);
+    }
+}
+
+/**
+ * Whether `job` can be planned in slices on several workers, as JSON:
+ * `{"points": N, "sliced": true}`, or `{"points": N, "sliced": false, "why": "…"}` (a program
+ * with passes, machine dynamics), `N` the path's point count (an estimate for constant-arc and
+ * surface-dependent samplings).
+ * @param {any} job
+ * @param {Function} progress
+ * @returns {string}
+ */
+export function slicing(job, progress) {
+    let deferred2_0;
+    let deferred2_1;
+    try {
+        const ret = wasm.slicing(job, progress);
+        var ptr1 = ret[0];
+        var len1 = ret[1];
+        if (ret[3]) {
+            ptr1 = 0; len1 = 0;
+            throw takeFromExternrefTable0(ret[2]);
+        }
+        deferred2_0 = ptr1;
+        deferred2_1 = len1;
+        return getStringFromWasm0(ptr1, len1);
+    } finally {
+        wasm.__wbindgen_free(deferred2_0, deferred2_1, 1);
     }
 }
 
@@ -2763,6 +2904,10 @@ function __wbg_get_imports() {
         __wbg_stencilOpSeparate_f4319497016868f8: function(arg0, arg1, arg2, arg3, arg4) {
             arg0.stencilOpSeparate(arg1 >>> 0, arg2 >>> 0, arg3 >>> 0, arg4 >>> 0);
         },
+        __wbg_stringify_0a0fbf2ef722380a: function() { return handleError(function (arg0) {
+            const ret = JSON.stringify(arg0);
+            return ret;
+        }, arguments); },
         __wbg_subgroupMaxSize_3586e822dc3603f6: function(arg0) {
             const ret = arg0.subgroupMaxSize;
             return ret;
@@ -3012,28 +3157,28 @@ function __wbg_get_imports() {
             arg0.writeBuffer(arg1, arg2, getArrayU8FromWasm0(arg3, arg4), arg5, arg6);
         }, arguments); },
         __wbindgen_generic_0000000000000001: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [Externref], shim_idx: 2378, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [Externref], shim_idx: 2391, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
             const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c);
             return ret;
         },
         __wbindgen_generic_0000000000000002: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("GPUDevice")], shim_idx: 347, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("GPUDevice")], shim_idx: 360, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
             const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87);
             return ret;
         },
         __wbindgen_generic_0000000000000003: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("GPUUncapturedErrorEvent")], shim_idx: 349, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("GPUUncapturedErrorEvent")], shim_idx: 362, ret: Unit, inner_ret: Some(Unit) }, mutable: true }) -> Externref`.
             const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h9a591c57c7a39bce);
             return ret;
         },
         __wbindgen_generic_0000000000000004: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("any")], shim_idx: 347, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_65);
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("any")], shim_idx: 360, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_71);
             return ret;
         },
         __wbindgen_generic_0000000000000005: function(arg0, arg1) {
-            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("undefined")], shim_idx: 347, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_66);
+            // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("undefined")], shim_idx: 360, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_72);
             return ret;
         },
         __wbindgen_generic_0000000000000006: function(arg0) {
@@ -3124,15 +3269,15 @@ function wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87(arg0, arg
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_65(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_65(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_71(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_71(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_66(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_66(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_72(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_72(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }
@@ -3222,6 +3367,9 @@ const CorrectedFinalization = (typeof FinalizationRegistry === 'undefined')
 const PlannedFinalization = (typeof FinalizationRegistry === 'undefined')
     ? { register: () => {}, unregister: () => {} }
     : new FinalizationRegistry(ptr => wasm.__wbg_planned_free(ptr, 1));
+const PlannedSliceFinalization = (typeof FinalizationRegistry === 'undefined')
+    ? { register: () => {}, unregister: () => {} }
+    : new FinalizationRegistry(ptr => wasm.__wbg_plannedslice_free(ptr, 1));
 const PowerMapsFinalization = (typeof FinalizationRegistry === 'undefined')
     ? { register: () => {}, unregister: () => {} }
     : new FinalizationRegistry(ptr => wasm.__wbg_powermaps_free(ptr, 1));

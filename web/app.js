@@ -1,4 +1,5 @@
-// The page: the job form, planning in a Web Worker (progress, cancel), the 3-D view, the report,
+// The page: the job form, planning in Web Workers (progress, cancel; a long path in slices on
+// one worker per core, its program streamed to the file), the 3-D view, the report,
 // the machine dynamics (split verdict, axis checks, 2-D plots) and the downloads; the measured
 // panel (a measured file corrected against the job: residual before and after, the corrected
 // job and its program), the set-up panel (a test cut turned into offsets) and Open NC… (a
@@ -22,17 +23,32 @@ import { offlineCopy } from './offline.js';
 import { FORMAT, dataFiles, formatProblem, jobFromLocation, shareLink } from './share.js';
 
 const $ = (id) => document.getElementById(id);
-const status = (window.spiralcam = { state: 'loading', stale: false, backend: null, report: null, analysis: null, correction: null, verification: null, started: 0, plans: 0, error: null, imported: null });
+const status = (window.spiralcam = { streamAbove: 200e6, saved: null, slices: 0, state: 'loading', stale: false, backend: null, report: null, analysis: null, correction: null, verification: null, started: 0, plans: 0, error: null, imported: null });
 
 function setState(s) {
   status.state = s;
   document.body.dataset.state = s;
 }
 
-/** Runs planner calls in a module worker; one call at a time, cancellable. */
-class PlannerWorker {
-  constructor(onProgress) {
-    this.onProgress = onProgress;
+/** The wasm module, compiled once for the page and each of its workers (each would otherwise
+ * fetch and compile its 7 MB again, three or more at once on the page's first plan). */
+let compiled = null;
+function wasmModule() {
+  compiled ??= (async () => {
+    const url = new URL('../pkg/spiralcam_web_bg.wasm', import.meta.url);
+    try {
+      return await WebAssembly.compileStreaming(fetch(url));
+    } catch {
+      // A server that does not label .wasm as application/wasm.
+      return WebAssembly.compile(await (await fetch(url)).arrayBuffer());
+    }
+  })();
+  return compiled;
+}
+
+/** One module worker and its call in flight. */
+class Lane {
+  constructor() {
     this.pending = null;
     this.nextId = 1;
     this.start();
@@ -40,6 +56,9 @@ class PlannerWorker {
 
   start() {
     this.worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+    const worker = this.worker;
+    // Calls are posted after the module, so the worker does not compile its own.
+    this.loaded = wasmModule().then((module) => worker.postMessage({ kind: 'module', module }), () => {});
     this.worker.onmessage = (e) => this.message(e.data);
     this.worker.onerror = (e) => this.fail(new Error(`worker: ${e.message}`));
   }
@@ -47,7 +66,7 @@ class PlannerWorker {
   message(m) {
     if (!this.pending || m.id !== this.pending.id) return;
     if (m.kind === 'progress') {
-      this.onProgress(this.pending.kind, m.done, m.total, m.stage);
+      this.pending.onProgress(m.done, m.total, m.stage);
       return;
     }
     const { resolve, reject } = this.pending;
@@ -63,30 +82,175 @@ class PlannerWorker {
     reject(err);
   }
 
-  /** `kind`: "plan", "analyse", "nc", "csv", "fts", "grid", "correct" (`extra`: the measured
-   * file's name, bytes and options), "setup" (`extra`: the observations as JSON) or "verify"
-   * (`extra`: the program's name and text, the other files' names and texts). */
-  run(kind, job, extra) {
-    this.cancel();
+  /** Runs one call; `transfer` the buffers handed over with it. */
+  call(kind, job, extra, onProgress, transfer = []) {
     const id = this.nextId++;
     return new Promise((resolve, reject) => {
-      this.pending = { id, kind, resolve, reject };
-      const transfer = extra?.bytes ? [extra.bytes.buffer] : [];
-      this.worker.postMessage({ id, kind, job, extra }, transfer);
+      this.pending = { id, resolve, reject, onProgress };
+      const worker = this.worker;
+      this.loaded.then(() => worker.postMessage({ id, kind, job, extra }, transfer));
     });
   }
 
-  /** Stops the call in flight, if any. */
-  cancel() {
+  /** Stops the call in flight, if any: the worker is terminated and a fresh one started. */
+  stop() {
     if (!this.pending) return;
     const { reject } = this.pending;
     this.pending = null;
     this.worker.terminate();
     this.start();
-    const err = new Error('cancelled');
-    err.cancelled = true;
-    reject(err);
+    reject(cancelled());
   }
+}
+
+function cancelled() {
+  const err = new Error('cancelled');
+  err.cancelled = true;
+  return err;
+}
+
+/** Most workers planning slices at once. */
+const MAX_WORKERS = 8;
+/** Paths with fewer points are planned in one worker (the slices' set-up would cost more). */
+const SLICED_ABOVE = 300_000;
+/** Points of a slice of a program being written: about 9 MB of text. */
+const PROGRAM_SLICE = 262_144;
+/** Slices are cut on multiples of the warm-start run (spiralcam::tool::WARM_RUN), so that no
+ * slice computes points another also computes. */
+const RUN = 64;
+
+/** Runs planner calls in module workers (progress, cancel): one call at a time on the first,
+ * or a long path cut into slices planned by one worker per core and joined in order (a
+ * point's position and compensation are functions of its index). */
+class PlannerWorker {
+  constructor(onProgress) {
+    this.onProgress = onProgress;
+    // Every worker loads its module now, in parallel with the first call.
+    this.lanes = Array.from({ length: this.size }, () => new Lane());
+    this.session = 0;
+  }
+
+  /** Workers for slices: one per core, at most [`MAX_WORKERS`] (`window.spiralcam.workers`
+   * sets another count, for measurements). */
+  get size() {
+    return Math.max(1, Math.min(status.workers ?? navigator.hardwareConcurrency ?? 1, MAX_WORKERS));
+  }
+
+  /** `kind`: "plan", "analyse", "nc", "csv", "fts", "grid", "correct" (`extra`: the measured
+   * file's name, bytes and options), "setup" (`extra`: the observations as JSON) or "verify"
+   * (`extra`: the program's name and text, the other files' names and texts). */
+  run(kind, job, extra) {
+    this.cancel();
+    const transfer = extra?.bytes ? [extra.bytes.buffer] : [];
+    return this.lanes[0].call(kind, job, extra, (done, total, stage) => this.onProgress(kind, done, total, stage), transfer);
+  }
+
+  /** Plans `job` for display: in slices on every worker when the path is long and the job
+   * allows it, else in one. */
+  async plan(job) {
+    const how = this.size > 1 ? await this.slicing(job, 'plan') : null;
+    if (!how || how.points < SLICED_ABOVE) return this.run('plan', job);
+    const parts = [];
+    const segments = [];
+    await this.slices(job, how.points, cut(how.points, 4 * this.size), false, (m) => {
+      parts.push(m.part);
+      segments.push(m.segments);
+    });
+    const all = new Float32Array(segments.reduce((n, s) => n + s.length, 0));
+    segments.reduce((at, s) => (all.set(s, at), at + s.length), 0);
+    const extra = { parts: `[${parts.join(',')}]`, segments: all, counts: segments.map((s) => s.length) };
+    const m = await this.lanes[0].call('merge', job, extra, (done, total, stage) => this.onProgress('plan', done, total, stage), [all.buffer]);
+    return { ...m, slices: parts.length };
+  }
+
+  /** Writes the program of `job` in slices, handing each slice's text to `write` in order
+   * (awaited); false when the job is written in one piece (a program with passes, machine
+   * dynamics), then nothing is written. */
+  async program(job, write) {
+    const how = await this.slicing(job, 'nc');
+    if (!how) return false;
+    await this.slices(job, how.points, cut(how.points, Math.ceil(how.points / PROGRAM_SLICE)), true, (m) => write(m.nc));
+    return true;
+  }
+
+  /** How `job` may be sliced ({points}), or null when it may not. Every worker sets the job up
+   * at once (a surface-dependent sampling takes seconds) and keeps it for its slices; the
+   * others are stopped when the job is not sliced. `kind` names the work for the progress. */
+  async slicing(job, kind) {
+    this.cancel();
+    while (this.lanes.length < this.size) this.lanes.push(new Lane());
+    const progress = (done, total, stage) => this.onProgress(kind, done, total, stage);
+    const [first, ...rest] = this.lanes.map((lane, k) => lane.call('slicing', job, undefined, k === 0 ? progress : () => {}));
+    rest.forEach((p) => p.catch(() => {}));
+    const m = await first;
+    if (!m.slicing.sliced) {
+      this.lanes.slice(1).forEach((lane) => lane.stop());
+      return null;
+    }
+    await Promise.all(rest);
+    return m.slicing;
+  }
+
+  /** Plans the slices `ranges` ([first, end) pairs) of `job`'s path of about `total` points on
+   * every worker and hands the results to `take` in order (awaited); at most two slices per
+   * worker wait to be taken. */
+  slices(job, total, ranges, nc, take) {
+    this.cancel();
+    while (this.lanes.length < this.size) this.lanes.push(new Lane());
+    const session = this.session;
+    const done = ranges.map(() => 0);
+    const results = new Map();
+    let next = 0;
+    let taken = 0;
+    let chain = Promise.resolve();
+    return new Promise((resolve, reject) => {
+      const fail = (e) => {
+        if (session === this.session) this.cancel();
+        reject(e);
+      };
+      const launch = (lane) => {
+        if (session !== this.session || next >= ranges.length || next - taken >= 2 * this.lanes.length) return;
+        const k = next++;
+        const [first, end] = ranges[k];
+        const progress = (d, _t, stage) => {
+          done[k] = d;
+          // Each slice also counts the two points before it that it computes again.
+          this.onProgress(nc ? 'nc' : 'plan', Math.min(done.reduce((a, b) => a + b, 0), total), total, stage);
+        };
+        lane.call('slice', job, { first, end, nc }, progress).then((m) => {
+          results.set(k, m);
+          while (results.has(taken)) {
+            const r = results.get(taken);
+            results.delete(taken);
+            taken += 1;
+            chain = chain.then(() => session === this.session && take(r));
+          }
+          if (taken === ranges.length) chain.then(resolve, fail);
+          else for (const l of this.lanes) if (!l.pending) launch(l);
+        }, fail);
+      };
+      this.lanes.forEach(launch);
+    });
+  }
+
+  /** Stops every call in flight. */
+  cancel() {
+    this.session += 1;
+    for (const lane of this.lanes) lane.stop();
+  }
+}
+
+/** `parts` slices of a path of about `points` points, [first, end) on multiples of [`RUN`],
+ * the last to the path's end (the count is an estimate for some samplings). */
+function cut(points, parts) {
+  const at = (k) => Math.round((points * k) / parts / RUN) * RUN;
+  const ranges = [];
+  for (let k = 0; k < parts; k++) {
+    const first = at(k);
+    const end = k + 1 === parts ? Infinity : at(k + 1);
+    if (end > first) ranges.push([first, end]);
+  }
+  return ranges;
 }
 
 const fmt = (v, digits = 3) => (Number.isFinite(v) ? v.toLocaleString('en-US', { maximumFractionDigits: digits }) : '–');
@@ -619,8 +783,9 @@ function labelDownloads(report) {
   $('download-fts').textContent = `Download FTS table (about ${bytes(e.fts_table_bytes)})`;
 }
 
+/** Saves `data` (bytes or text, or a list of them and Blobs) as the file `name`. */
 function download(name, data, type) {
-  const url = URL.createObjectURL(new Blob([data], { type }));
+  const url = URL.createObjectURL(new Blob(Array.isArray(data) ? data : [data], { type }));
   const a = Object.assign(document.createElement('a'), { href: url, download: name });
   document.body.append(a);
   a.click();
@@ -629,7 +794,18 @@ function download(name, data, type) {
 }
 
 async function main() {
-  await init();
+  await init({ module_or_path: await wasmModule() });
+  // The workers load their module while the view starts.
+  const worker = new PlannerWorker((kind, done, total, stage) => {
+    progress.max = total;
+    progress.value = done;
+    const writing = { nc: 'writing NC', csv: 'writing CSV', fts: 'writing the FTS table', grid: 'writing the FTS grid' }[kind];
+    const what = stage === 'planning' && writing ? writing : stage;
+    const items = { 'sampling bands': 'circles', 'concave zones': 'sections and zones', 'FTS grid': 'passes (at most)', 'reading the program': 'moves', verifying: 'moves' }[stage] ?? 'points';
+    progressText.textContent = total > 0
+      ? `${what}: ${Math.round((100 * done) / total)} % (${fmt(done, 0)} / ${fmt(total, 0)} ${items})`
+      : `${what}: ${fmt(done, 0)} ${items}`;
+  });
   $('version').textContent = `v${version()}`;
   const scale = colormap_css();
   $('legend-bar').style.background = scale;
@@ -713,16 +889,6 @@ async function main() {
         : 'the form has changed since';
     note.textContent = `Stale: the report, the view and the downloads are the plan of “${planned.job.name}” made at ${planned.at.toLocaleTimeString('en-GB')}; ${why}.`;
   };
-  const worker = new PlannerWorker((kind, done, total, stage) => {
-    progress.max = total;
-    progress.value = done;
-    const writing = { nc: 'writing NC', csv: 'writing CSV', fts: 'writing the FTS table', grid: 'writing the FTS grid' }[kind];
-    const what = stage === 'planning' && writing ? writing : stage;
-    const items = { 'sampling bands': 'circles', 'concave zones': 'sections and zones', 'FTS grid': 'passes (at most)', 'reading the program': 'moves', verifying: 'moves' }[stage] ?? 'points';
-    progressText.textContent = total > 0
-      ? `${what}: ${Math.round((100 * done) / total)} % (${fmt(done, 0)} / ${fmt(total, 0)} ${items})`
-      : `${what}: ${fmt(done, 0)} ${items}`;
-  });
 
   form = new JobForm($('job-form'), () => schedule(), JSON.parse(machine_presets()));
   status.formJob = () => form.value();
@@ -754,9 +920,10 @@ async function main() {
     busy(true);
     try {
       const started = performance.now();
-      const m = await worker.run('plan', job);
+      const m = await worker.plan(job);
       planned = { job, names: m.names, at: new Date() };
       status.report = m.report;
+      status.slices = m.slices ?? 0;
       status.plans += 1;
       showReport(m.report, job);
       $('download-fts').hidden = !m.report.dynamics?.split;
@@ -793,6 +960,10 @@ async function main() {
   const save = async (kind) => {
     if (!planned) return;
     generation++;
+    if (kind === 'nc' && !(status.report?.program?.children?.length > 0)) {
+      saveProgram(planned.names.nc, status.report.nc_bytes);
+      return;
+    }
     busy(true);
     try {
       const m = await worker.run(kind, planned.job);
@@ -801,6 +972,37 @@ async function main() {
       download(name, m.bytes, zipped ? 'application/zip' : kind === 'nc' ? 'text/plain' : 'text/csv');
     } catch (e) {
       if (!e.cancelled) showFailure(e);
+    } finally {
+      busy(false);
+    }
+  };
+
+  /** The program, written in slices by every worker straight into the file where the browser
+   * lets the page write one (the File System Access API, for programs past
+   * `status.streamAbove` bytes: the save dialog comes first), else into a Blob built from the
+   * slices' texts; in one piece by one worker for a job that is not sliced. Either way the
+   * page never holds the whole text in its own memory twice. */
+  const saveProgram = async (name, size) => {
+    let file = null;
+    busy(true);
+    try {
+      if (window.showSaveFilePicker && size > status.streamAbove) {
+        const handle = await window.showSaveFilePicker({ suggestedName: name });
+        file = await handle.createWritable();
+      }
+      const parts = [];
+      let slices = 0;
+      const sliced = await worker.program(planned.job, (bytes) => {
+        slices += 1;
+        return file ? file.write(bytes) : parts.push(new Blob([bytes]));
+      });
+      if (!sliced) parts.push((await worker.run('nc', planned.job)).bytes);
+      if (file) await file.close();
+      else download(name, parts, 'text/plain');
+      status.saved = { name, streamed: Boolean(file), slices };
+    } catch (e) {
+      await file?.abort();
+      if (!e.cancelled && e.name !== 'AbortError') showFailure(e);
     } finally {
       busy(false);
     }

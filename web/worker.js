@@ -1,45 +1,68 @@
 // The planning worker: loads the wasm module once and answers {id, kind, job} messages with
 // progress messages and one result ({kind: "planned" | "analysed" | "corrected" | "offsets" |
-// "verified" | "bytes"}) or
-// {kind: "error", message}.
+// "verified" | "bytes" | "slicing" | "slice"}) or {kind: "error", message}. The page runs
+// several: a large plan or program is cut into slices of the path ("slice": `extra` {first, end,
+// nc}), one per worker at a time, and joined in order ("merge": `extra` {parts, segments,
+// counts}, answered as "planned").
 // Typed arrays are transferred, not copied.
 
-import init, { analyse, plan, nc_program, csv_table, fts_table, fts_grid, power_maps, correct, setup_offsets, verify_program } from '../pkg/spiralcam_web.js';
+import init, { analyse, plan, plan_slice, plan_merge, slicing, nc_program, csv_table, fts_table, fts_grid, power_maps, correct, setup_offsets, verify_program } from '../pkg/spiralcam_web.js';
 
 /** Samples per side of the power maps. */
 const MAP_SIZE = 161;
 
-const ready = init();
+/** The module: compiled once by the page and handed over ({kind: "module", module}) when the
+ * page does so, else fetched and compiled here at the first call. */
+let ready = null;
+
+/** The "planned" message of a plan (`p`, freed here) of `job`, and what it transfers. */
+function planned(id, p, job) {
+  const m = {
+    id,
+    kind: 'planned',
+    report: JSON.parse(p.report),
+    positions: p.mesh_positions,
+    normals: p.mesh_normals,
+    indices: p.mesh_indices,
+    zMin: p.z_min,
+    zMax: p.z_max,
+    path: p.path,
+    revolutionStep: p.revolution_step,
+    names: { nc: p.nc_file_name, csv: p.csv_file_name },
+  };
+  p.free();
+  const transfer = [m.positions.buffer, m.normals.buffer, m.indices.buffer, m.path.buffer];
+  const maps = power_maps(job, MAP_SIZE);
+  if (maps) {
+    m.maps = { size: maps.size, stepMm: maps.step_mm, mean: maps.mean_d, cylinder: maps.cylinder_d };
+    maps.free();
+    transfer.push(m.maps.mean.buffer, m.maps.cylinder.buffer);
+  }
+  return [m, transfer];
+}
 
 self.onmessage = async (e) => {
   const { id, kind, job, extra } = e.data;
+  if (kind === 'module') {
+    ready ??= init({ module_or_path: e.data.module });
+    return;
+  }
+  ready ??= init();
   const progress = (done, total, stage) => self.postMessage({ id, kind: 'progress', done, total, stage });
   try {
     await ready;
     if (kind === 'plan') {
-      const p = plan(job, progress);
-      const m = {
-        id,
-        kind: 'planned',
-        report: JSON.parse(p.report),
-        positions: p.mesh_positions,
-        normals: p.mesh_normals,
-        indices: p.mesh_indices,
-        zMin: p.z_min,
-        zMax: p.z_max,
-        path: p.path,
-        revolutionStep: p.revolution_step,
-        names: { nc: p.nc_file_name, csv: p.csv_file_name },
-      };
-      p.free();
-      const transfer = [m.positions.buffer, m.normals.buffer, m.indices.buffer, m.path.buffer];
-      const maps = power_maps(job, MAP_SIZE);
-      if (maps) {
-        m.maps = { size: maps.size, stepMm: maps.step_mm, mean: maps.mean_d, cylinder: maps.cylinder_d };
-        maps.free();
-        transfer.push(m.maps.mean.buffer, m.maps.cylinder.buffer);
-      }
-      self.postMessage(m, transfer);
+      self.postMessage(...planned(id, plan(job, progress), job));
+    } else if (kind === 'merge') {
+      const p = plan_merge(job, extra.parts, extra.segments, extra.counts, progress);
+      self.postMessage(...planned(id, p, job));
+    } else if (kind === 'slicing') {
+      self.postMessage({ id, kind: 'slicing', slicing: JSON.parse(slicing(job, progress)) });
+    } else if (kind === 'slice') {
+      const s = plan_slice(job, extra.first, extra.end, extra.nc, progress);
+      const m = { id, kind: 'slice', part: s.part, segments: s.segments, nc: s.nc };
+      s.free();
+      self.postMessage(m, [m.segments.buffer, m.nc.buffer]);
     } else if (kind === 'analyse') {
       const a = analyse(job, MAP_SIZE, progress);
       const m = {

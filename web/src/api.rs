@@ -9,7 +9,9 @@
 //!
 //! Planning a job for display ([`plan`]) writes the NC program into a byte counter only; the
 //! program and the CSV are produced on demand ([`nc_program`], [`csv_table`]) by planning again,
-//! which is deterministic, so memory stays flat however many points the path has.
+//! which is deterministic, so memory stays flat however many points the path has. A long path
+//! is planned by several workers in slices ([`plan_slice`], joined by [`plan_merge`]), and its
+//! program written slice by slice ([`plan_slice`] with its text), where [`slicing`] allows.
 
 use spiralcam::analysis::Analysis;
 use spiralcam::analysis::power_map::PowerMap;
@@ -17,10 +19,10 @@ use spiralcam::display::{DisplayPath, SurfaceMesh};
 use spiralcam::field::short;
 use spiralcam::job::Job;
 use spiralcam::nc::program::ChildFiles;
-use spiralcam::plan::{Limits, Planner, Sinks};
+use spiralcam::plan::{Limits, PlanSlice, Planner, Sinks};
 use spiralcam::progress::Progress;
 use spiralcam::raster::Raster;
-use spiralcam::report::{Cost, Outputs};
+use spiralcam::report::{Cost, Outputs, Stats};
 use spiralcam::surface::{PartDisc, SurfaceSpec};
 use std::ops::ControlFlow;
 use wasm_bindgen::prelude::*;
@@ -64,6 +66,38 @@ pub(crate) fn parse_job(job: JsValue) -> Result<Job, JsError> {
 fn read_job(job: JsValue, progress: &js_sys::Function) -> Result<Planner, JsError> {
     Planner::with_progress(&parse_job(job)?, &mut reporter(progress))
         .map_err(|e| JsError::new(&e.to_string()))
+}
+
+thread_local! {
+    /// The planner of the last job sliced in this worker, by the job's JSON: a worker plans
+    /// several slices of one job, and a surface-dependent sampling takes seconds to set up.
+    static SLICED: std::cell::RefCell<Option<(String, std::rc::Rc<Planner>)>> =
+        const { std::cell::RefCell::new(None) };
+}
+
+/// The planner of `job` for its slices: the one kept from the last call when the job is the same.
+fn sliced_planner(
+    job: JsValue,
+    progress: &js_sys::Function,
+) -> Result<std::rc::Rc<Planner>, JsError> {
+    // The page's own text of the job (the core's JSON of it may order a map differently).
+    let key =
+        String::from(js_sys::JSON::stringify(&job).map_err(|_| JsError::new("job: not JSON"))?);
+    if let Some(p) = SLICED.with_borrow(|c| {
+        c.as_ref()
+            .filter(|(k, _)| *k == key)
+            .map(|(_, p)| p.clone())
+    }) {
+        return Ok(p);
+    }
+    SLICED.set(None);
+    let job = parse_job(job)?;
+    let planner = std::rc::Rc::new(
+        Planner::with_progress(&job, &mut reporter(progress))
+            .map_err(|e| JsError::new(&e.to_string()))?,
+    );
+    SLICED.set(Some((key, planner.clone())));
+    Ok(planner)
 }
 
 /// Calls `progress(done, total, stage)` in JavaScript (`stage` as `spiralcam::progress::Stage::label` names it);
@@ -162,8 +196,7 @@ impl Planned {
 pub fn plan(job: JsValue, progress: &js_sys::Function) -> Result<Planned, JsError> {
     let planner = read_job(job, progress)?;
     let cost = admit(&planner, Outputs::default())?;
-    let total = planner.spiral().point_count_hint();
-    let mut display = DisplayPath::new(total, planner.spiral().revolutions(), DISPLAY_POINTS);
+    let mut display = display_path(&planner);
     let sinks = Sinks {
         display: Some(&mut display),
         ..Default::default()
@@ -172,16 +205,191 @@ pub fn plan(job: JsValue, progress: &js_sys::Function) -> Result<Planned, JsErro
         .run_with_dynamics(sinks, &mut reporter(progress))
         .map_err(|e| JsError::new(&e.to_string()))?;
     report.estimate = Some(cost);
+    planned(&planner, report.to_json(), display)
+}
+
+/// The display copy of the whole path.
+fn display_path(planner: &Planner) -> DisplayPath {
+    let total = planner.spiral().point_count_hint();
+    DisplayPath::new(total, planner.spiral().revolutions(), DISPLAY_POINTS)
+}
+
+/// What the page draws of a plan whose report is `report`.
+fn planned(planner: &Planner, report: String, display: DisplayPath) -> Result<Planned, JsError> {
     let mesh = SurfaceMesh::for_surface(planner.surface(), planner.job().part_radius_mm())
         .map_err(|e| JsError::new(&e.to_string()))?;
     Ok(Planned {
-        report: report.to_json(),
+        report,
         mesh,
         revolution_step: display.revolution_step() as u32,
         path: display.segments,
         file_stem: planner.job().name.clone(),
         extension: planner.job().output.style().extension.to_string(),
     })
+}
+
+/// Whether `job` can be planned in slices on several workers, as JSON:
+/// `{"points": N, "sliced": true}`, or `{"points": N, "sliced": false, "why": "…"}` (a program
+/// with passes, machine dynamics), `N` the path's point count (an estimate for constant-arc and
+/// surface-dependent samplings).
+#[wasm_bindgen]
+pub fn slicing(job: JsValue, progress: &js_sys::Function) -> Result<String, JsError> {
+    let planner = sliced_planner(job, progress)?;
+    let points = planner.spiral().point_count_hint();
+    Ok(match planner.slicing() {
+        Ok(()) => serde_json::json!({ "points": points, "sliced": true }),
+        Err(why) => serde_json::json!({ "points": points, "sliced": false, "why": why }),
+    }
+    .to_string())
+}
+
+/// One slice of a plan ([`plan_slice`]).
+#[wasm_bindgen]
+pub struct PlannedSlice {
+    part: String,
+    segments: Vec<f32>,
+    nc: Vec<u8>,
+}
+
+#[wasm_bindgen]
+impl PlannedSlice {
+    /// Its figures and display state as JSON, for [`plan_merge`].
+    #[wasm_bindgen(getter)]
+    pub fn part(&self) -> String {
+        self.part.clone()
+    }
+
+    /// Its display segments, for [`plan_merge`].
+    #[wasm_bindgen(getter)]
+    pub fn segments(&self) -> Vec<f32> {
+        self.segments.clone()
+    }
+
+    /// Its program text (empty unless asked for).
+    #[wasm_bindgen(getter)]
+    pub fn nc(&self) -> Vec<u8> {
+        self.nc.clone()
+    }
+}
+
+/// A slice's figures and display state ([`PlannedSlice::part`]).
+#[derive(serde::Serialize, serde::Deserialize)]
+struct SlicePart {
+    slice: PlanSlice,
+    display: DisplayPath,
+}
+
+/// Plans the points `first` ≤ index < `end` of `job` (`end` infinite: to the path's end), the
+/// work of one of the page's workers ([`Planner::run_slice`]): their display copy and report
+/// figures, and their program text when `nc` (the header in the first slice, the end in the
+/// last). The texts of consecutive slices concatenated are the program `nc_program` writes.
+#[wasm_bindgen]
+pub fn plan_slice(
+    job: JsValue,
+    first: f64,
+    end: f64,
+    nc: bool,
+    progress: &js_sys::Function,
+) -> Result<PlannedSlice, JsError> {
+    let planner = sliced_planner(job, progress)?;
+    admit_sliced(&planner, nc)?;
+    let index = |v: f64, name: &str| {
+        if v.is_finite() && v >= 0.0 && v.fract() == 0.0 {
+            Ok(v as u64)
+        } else if v == f64::INFINITY {
+            Ok(u64::MAX)
+        } else {
+            Err(JsError::new(&format!(
+                "slice {name} = {v}: must be a whole number ≥ 0"
+            )))
+        }
+    };
+    let range = index(first, "first")?..index(end, "end")?;
+    let theta0 = planner
+        .first_point()
+        .map_err(|e| JsError::new(&e.to_string()))?
+        .theta;
+    let mut display = display_path(&planner).starting_at(range.start, theta0);
+    let mut text = Vec::new();
+    let slice = planner
+        .run_slice(
+            range,
+            nc.then_some(&mut text as &mut dyn std::io::Write),
+            Some(&mut display),
+            &mut reporter(progress),
+        )
+        .map_err(|e| JsError::new(&e.to_string()))?;
+    let segments = std::mem::take(&mut display.segments);
+    let part = serde_json::to_string(&SlicePart { slice, display })
+        .map_err(|e| JsError::new(&e.to_string()))?;
+    Ok(PlannedSlice {
+        part,
+        segments,
+        nc: text,
+    })
+}
+
+/// The plan of `job` from its slices ([`plan_slice`], in order): `parts` their
+/// [`PlannedSlice::part`]s as a JSON array, `segments` their segments one after the other,
+/// `counts` how many numbers each has. The same report and drawing as [`plan`]; the concave
+/// zones are searched here.
+#[wasm_bindgen]
+pub fn plan_merge(
+    job: JsValue,
+    parts: &str,
+    segments: Vec<f32>,
+    counts: Vec<u32>,
+    progress: &js_sys::Function,
+) -> Result<Planned, JsError> {
+    let planner = sliced_planner(job, progress)?;
+    let cost = admit(&planner, Outputs::default())?;
+    let parts: Vec<SlicePart> =
+        serde_json::from_str(parts).map_err(|e| JsError::new(&format!("slices: {e}")))?;
+    if parts.len() != counts.len()
+        || counts.iter().map(|&c| c as usize).sum::<usize>() != segments.len()
+    {
+        return Err(JsError::new(
+            "slices: the parts, counts and segments disagree",
+        ));
+    }
+    let (mut stats, mut nc_bytes, mut display) = (Stats::default(), 0, None::<DisplayPath>);
+    let mut rest = segments.as_slice();
+    for (part, count) in parts.into_iter().zip(counts) {
+        let (mine, after) = rest.split_at(count as usize);
+        rest = after;
+        let mut d = part.display;
+        d.segments = mine.to_vec();
+        display = Some(match display {
+            None => d,
+            Some(before) => before.merge(d),
+        });
+        stats = stats.merge(part.slice.stats);
+        nc_bytes += part.slice.nc_bytes;
+    }
+    let mut report = planner
+        .report_of(&stats, nc_bytes, &mut reporter(progress))
+        .map_err(|e| JsError::new(&e.to_string()))?;
+    report.estimate = Some(cost);
+    planned(
+        &planner,
+        report.to_json(),
+        display.unwrap_or_else(|| display_path(&planner)),
+    )
+}
+
+/// A slice's cost, refused beyond the command line's limits: a slice holds only its own text,
+/// so the page's limit on a download built in memory does not apply.
+fn admit_sliced(planner: &Planner, nc: bool) -> Result<(), JsError> {
+    let cost = planner
+        .cost(None)
+        .map_err(|e| JsError::new(&e.to_string()))?;
+    let outputs = Outputs {
+        nc,
+        ..Outputs::default()
+    };
+    Limits::default()
+        .check(&cost, outputs, planner.job().strategy.feed_mm_per_rev)
+        .map_err(|e| JsError::new(&e.to_string()))
 }
 
 /// The NC program of `job`, byte for byte what `spiralcam plan JOB --nc FILE` writes; for a

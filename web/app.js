@@ -115,8 +115,8 @@ const MAX_WORKERS = 8;
 const SLICED_ABOVE = 300_000;
 /** Points of a slice of a program being written: about 9 MB of text. */
 const PROGRAM_SLICE = 262_144;
-/** Slices are cut on multiples of the warm-start run (spiralcam::tool::WARM_RUN), so that no
- * slice computes points another also computes. */
+/** Slices are cut on multiples of the warm-start run (spiralcam::tool::WARM_RUN): each then
+ * computes again only the run before it (its first point's predecessor's). */
 const RUN = 64;
 
 /** Runs planner calls in module workers (progress, cancel): one call at a time on the first,
@@ -932,7 +932,8 @@ async function main() {
       showDynamics(m.report.dynamics, job);
       showMaps(m.maps, stops);
       showAnalysis(null, stops);
-      $('plan-time').textContent = `planned in ${fmt((performance.now() - started) / 1000, 2)} s`;
+      const on = status.slices ? ` in ${status.slices} slices on ${worker.size} workers` : '';
+      $('plan-time').textContent = `planned in ${fmt((performance.now() - started) / 1000, 2)} s${on}`;
       if (viewer) {
         viewer.set_surface(m.positions, m.normals, m.indices, m.zMin, m.zMax);
         const drawn = passPaths(m.path, m.report.program);

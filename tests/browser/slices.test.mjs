@@ -58,6 +58,7 @@ describe('a long path on every core', () => {
     await openJob(page, JOB);
     const { report, slices } = await page.evaluate(() => ({ report: window.spiralcam.report, slices: window.spiralcam.slices }));
     assert.equal(slices, cores > 1 ? 4 * Math.min(cores, 8) : 0, `${cores} cores`);
+    if (cores > 1) assert.match(await page.textContent('#plan-time'), new RegExp(` in ${slices} slices on ${Math.min(cores, 8)} workers$`));
     assert.equal(report.points, cli.report.points);
     assert.equal(figures(report), figures(cli.report));
   });

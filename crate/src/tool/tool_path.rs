@@ -5,9 +5,10 @@
 //! computes it one point at a time, [`ToolPath::for_each_point`] in batches on every core,
 //! [`ToolPath::for_each_pair`] with a function of each point and its predecessor computed beside
 //! it (an analysis's per-segment work), [`ToolPath::for_each_pair_in`] the same over a slice of
-//! the indices (the page's workers each plan one, [`crate::plan::PlanSlice`]). Each point's contact search starts from its
-//! predecessor's contact within runs of [`WARM_RUN`] points aligned on the index (the warm start
-//! of [`crate::tool::one_way`]), so a point is the same bits however the path is computed.
+//! the indices (the page's workers each plan one, [`crate::plan::PlanSlice`]). Each point's
+//! contact search starts from its predecessor's contact within runs of [`WARM_RUN`] points
+//! aligned on the index (the warm start of [`crate::tool::one_way`]), so a point is the same
+//! bits however the path is computed.
 
 use super::NoseCompensator;
 use super::reach::{self, Reach};
@@ -349,6 +350,10 @@ impl ToolPath {
             .saturating_sub(range.start);
         let mut done = 0u64;
         let mut spiral = self.spiral.points();
+        // A batch's points with their indices and whether they are handed on: in every batch
+        // but the first, the first points are the last run of the batch before, compensated
+        // again (the last one is the predecessor of the next) and not handed on twice; in the
+        // first, those before the range.
         let mut next = begin;
         let mut ended = match usize::try_from(begin) {
             Ok(0) => false,

@@ -39,6 +39,9 @@ if ! diff -r "$root/pkg" "$fresh"; then
   exit 1
 fi
 
+say "the command line the browser tests compare with (cli-test profile)"
+cargo build --locked -p spiralcam --bin spiralcam --profile cli-test
+
 say "browser tests"
 (cd "$root/tests/browser" && node --test --test-concurrency=1 --test-reporter=spec)
 

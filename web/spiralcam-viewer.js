@@ -259,10 +259,13 @@ export class SpiralcamViewer extends HTMLElement {
     this.state = 'planning';
     this.$('.nc').disabled = true;
     this.$('.box').classList.toggle('stale', Boolean(this.report));
-    this.updateOpenLink(job);
+    const linked = this.updateOpenLink(job);
     const limit = Number(this.getAttribute('max-points')) || MAX_POINTS;
     const estimate = estimatePoints(job);
     if (estimate > limit) {
+      // The message offers the full page: its link is written before the state says so.
+      await linked;
+      if (mine !== this.generation) return;
       this.fail(`This job plans about ${fmt(estimate, 0)} points, more than the ${fmt(limit, 0)} this viewer plans.\nOpen it in spiralcam to plan it in full.`, 'too-large');
       return;
     }

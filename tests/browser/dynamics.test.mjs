@@ -46,8 +46,7 @@ for (const backend of ['WebGPU', 'WebGL2']) {
       let context;
       ({ browser, context } = await launch(backend));
       ({ page, errors } = await openPage(context, server.url));
-      // Paper 004's lens array on Ø4 mm, 100 turns of 180 points: 18 001 points, quick in the
-      // debug command line too.
+      // Paper 004's lens array on Ø4 mm, 100 turns of 180 points: 18 001 points, quick to plan.
       await setField(page, 'part.diameter_mm', '4');
       await setField(page, 'strategy.feed_mm_per_rev', '0.02');
       await setField(page, 'strategy.sampling.points_per_rev', '180');

@@ -156,7 +156,7 @@ describe('surface families on the page', () => {
   test('scattered points chosen in the page regenerate the sphere they sample', async () => {
     const csv = join(mkdtempSync(join(tmpdir(), 'spiralcam-data-')), 'sphere.csv');
     writeFileSync(csv, sphereCsv());
-    // A coarse path (20 turns of 90 points) keeps the debug command line quick.
+    // A coarse path (20 turns of 90 points) keeps the RBF's plan quick.
     await setField(page, 'strategy.feed_mm_per_rev', '0.1');
     await setField(page, 'strategy.sampling.points_per_rev', '90');
     await page.selectOption('[data-field="surface.type"]', 'scattered');

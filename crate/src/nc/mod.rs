@@ -340,15 +340,9 @@ impl<W: Write> NcWriter<W> {
             text.push('\n');
         }
         out.write_all(text.as_bytes())?;
-        Ok(Self {
-            out,
-            blocks: Blocks::new(spec, header.spindle_rpm),
-            feed_mm_per_min: spec.feed_mm_per_min.unwrap_or(0.0),
-            plunge_feed: spec.plunge_feed_mm_per_min,
-            clearance: spec.clearance_mm,
-            last_z: None,
-            bytes: text.len() as u64,
-        })
+        let mut writer = Self::resume(out, spec, header.spindle_rpm);
+        writer.bytes = text.len() as u64;
+        Ok(writer)
     }
 
     /// Goes on with a program whose header and first blocks another writer wrote (a slice of

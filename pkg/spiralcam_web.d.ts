@@ -120,9 +120,10 @@ export class PlannedSlice {
     free(): void;
     [Symbol.dispose](): void;
     /**
-     * Its program text (empty unless asked for).
+     * Takes its program text (empty unless asked for), leaving none behind: the text is not
+     * copied a second time in the module's memory.
      */
-    readonly nc: Uint8Array;
+    take_nc(): Uint8Array;
     /**
      * Its figures and display state as JSON, for [`plan_merge`].
      */
@@ -351,9 +352,10 @@ export function plan_merge(job: any, parts: string, segments: Float32Array | num
 
 /**
  * Plans the points `first` ≤ index < `end` of `job` (`end` infinite: to the path's end), the
- * work of one of the page's workers ([`Planner::run_slice`]): their display copy and report
- * figures, and their program text when `nc` (the header in the first slice, the end in the
- * last). The texts of consecutive slices concatenated are the program `nc_program` writes.
+ * work of one of the page's workers ([`Planner::run_slice`]): their report figures and either
+ * their display copy or, when `nc`, their program text (the header in the first slice, the
+ * end in the last). The texts of consecutive slices concatenated are the program `nc_program`
+ * writes.
  */
 export function plan_slice(job: any, first: number, end: number, nc: boolean, progress: Function): PlannedSlice;
 
@@ -444,9 +446,9 @@ export interface InitOutput {
     readonly planned_revolution_step: (a: number) => number;
     readonly planned_z_max: (a: number) => number;
     readonly planned_z_min: (a: number) => number;
-    readonly plannedslice_nc: (a: number) => [number, number];
     readonly plannedslice_part: (a: number) => [number, number];
     readonly plannedslice_segments: (a: number) => [number, number];
+    readonly plannedslice_take_nc: (a: number) => [number, number];
     readonly power_maps: (a: any, b: number) => [number, number, number];
     readonly powermaps_cylinder_d: (a: number) => [number, number];
     readonly powermaps_mean_d: (a: number) => [number, number];

@@ -332,16 +332,6 @@ export class PlannedSlice {
         wasm.__wbg_plannedslice_free(ptr, 0);
     }
     /**
-     * Its program text (empty unless asked for).
-     * @returns {Uint8Array}
-     */
-    get nc() {
-        const ret = wasm.plannedslice_nc(this.__wbg_ptr);
-        var v1 = getArrayU8FromWasm0(ret[0], ret[1]).slice();
-        wasm.__wbindgen_free(ret[0], ret[1] * 1, 1);
-        return v1;
-    }
-    /**
      * Its figures and display state as JSON, for [`plan_merge`].
      * @returns {string}
      */
@@ -365,6 +355,17 @@ export class PlannedSlice {
         const ret = wasm.plannedslice_segments(this.__wbg_ptr);
         var v1 = getArrayF32FromWasm0(ret[0], ret[1]).slice();
         wasm.__wbindgen_free(ret[0], ret[1] * 4, 4);
+        return v1;
+    }
+    /**
+     * Takes its program text (empty unless asked for), leaving none behind: the text is not
+     * copied a second time in the module's memory.
+     * @returns {Uint8Array}
+     */
+    take_nc() {
+        const ret = wasm.plannedslice_take_nc(this.__wbg_ptr);
+        var v1 = getArrayU8FromWasm0(ret[0], ret[1]).slice();
+        wasm.__wbindgen_free(ret[0], ret[1] * 1, 1);
         return v1;
     }
 }
@@ -1010,9 +1011,10 @@ export function plan_merge(job, parts, segments, counts, progress) {
 
 /**
  * Plans the points `first` ≤ index < `end` of `job` (`end` infinite: to the path's end), the
- * work of one of the page's workers ([`Planner::run_slice`]): their display copy and report
- * figures, and their program text when `nc` (the header in the first slice, the end in the
- * last). The texts of consecutive slices concatenated are the program `nc_program` writes.
+ * work of one of the page's workers ([`Planner::run_slice`]): their report figures and either
+ * their display copy or, when `nc`, their program text (the header in the first slice, the
+ * end in the last). The texts of consecutive slices concatenated are the program `nc_program`
+ * writes.
  * @param {any} job
  * @param {number} first
  * @param {number} end

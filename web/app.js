@@ -113,8 +113,9 @@ function cancelled() {
 const MAX_WORKERS = 8;
 /** Paths with fewer points are planned in one worker (the slices' set-up would cost more). */
 const SLICED_ABOVE = 300_000;
-/** Points of a slice of a program being written: about 9 MB of text. */
-const PROGRAM_SLICE = 262_144;
+/** Points of a slice of a program being written: about 2.3 MB of text (larger slices grew each
+ * worker's memory by their text and its copy, and the tab's garbage with them). */
+const PROGRAM_SLICE = 65_536;
 /** Slices are cut on multiples of the warm-start run (spiralcam::tool::WARM_RUN): each then
  * computes again only the run before it (its first point's predecessor's). */
 const RUN = 64;
@@ -997,7 +998,11 @@ async function main() {
         slices += 1;
         return file ? file.write(bytes) : parts.push(new Blob([bytes]));
       });
-      if (!sliced) parts.push((await worker.run('nc', planned.job)).bytes);
+      if (!sliced) {
+        const { bytes } = await worker.run('nc', planned.job);
+        if (file) await file.write(bytes);
+        else parts.push(bytes);
+      }
       if (file) await file.close();
       else download(name, parts, 'text/plain');
       status.saved = { name, streamed: Boolean(file), slices };

@@ -60,7 +60,7 @@ self.onmessage = async (e) => {
       self.postMessage({ id, kind: 'slicing', slicing: JSON.parse(slicing(job, progress)) });
     } else if (kind === 'slice') {
       const s = plan_slice(job, extra.first, extra.end, extra.nc, progress);
-      const m = { id, kind: 'slice', part: s.part, segments: s.segments, nc: s.nc };
+      const m = { id, kind: 'slice', part: s.part, segments: s.segments, nc: s.take_nc() };
       s.free();
       self.postMessage(m, [m.segments.buffer, m.nc.buffer]);
     } else if (kind === 'analyse') {

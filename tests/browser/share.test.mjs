@@ -59,8 +59,8 @@ describe('a job in a link', () => {
   });
 
   for (const name of JOBS) {
-    test(`${name}: the link opens the same job, whose NC is the command line's`, async (t) => {
-      const slow = SLOW.has(name);
+    const slow = SLOW.has(name);
+    test(`${name}: the link opens the same job${slow ? ', its data file chosen' : ", whose NC is the command line's"}`, async (t) => {
       const { page, errors } = await open(first, `${server.url}?job=crate/jobs/${name}`, ['planning', 'done']);
       const shown = await formJob(page);
       await page.click('#share');

@@ -1,8 +1,9 @@
 // The page on every core (issue 16): a long path is planned in slices, one Web Worker per core,
 // joined in order into the command line's report, and its program is written in slices into a
 // file (the File System Access API, stubbed here with a writer that keeps the chunks) or into a
-// Blob built from them; either way byte for byte the command line's program. A cancel while the
-// slices run leaves the page cancelled.
+// Blob built from them; either way byte for byte the command line's program. A program that is
+// not sliced (a space spiral) goes into the file too. A cancel while the slices run leaves the
+// page cancelled.
 
 import { after, before, describe, test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -24,8 +25,8 @@ const JOB = {
   output: { dialect: 'moore' },
 };
 
-/** Slices of the program: 262 144 points each (web/app.js PROGRAM_SLICE). */
-const programSlices = () => Math.ceil(cli.report.points / 262_144);
+/** Slices of the program: 65 536 points each (web/app.js PROGRAM_SLICE). */
+const programSlices = () => Math.ceil(cli.report.points / 65_536);
 
 const sha256 = (bytes) => createHash('sha256').update(bytes).digest('hex');
 
@@ -52,6 +53,33 @@ after(async () => {
   server.stop();
 });
 
+/** Saves the page's program through a stubbed save dialog whose writer keeps the chunks (Blobs
+ * or bytes, as the page writes them); returns its name, length, chunk count, SHA-256 and the
+ * page's `saved`. */
+async function streamed() {
+  await page.evaluate(() => {
+    window.spiralcam.streamAbove = 0;
+    window.spiralcam.saved = null;
+    window.written = [];
+    window.showSaveFilePicker = async ({ suggestedName }) => ({
+      createWritable: async () => ({
+        write: async (data) => window.written.push(new Uint8Array(await new Blob([data]).arrayBuffer())),
+        close: async () => window.written.push(suggestedName),
+        abort: async () => window.written.push('aborted'),
+      }),
+    });
+  });
+  await page.click('#download-nc');
+  await page.waitForFunction(() => window.spiralcam.saved !== null, null, { timeout: 120_000 });
+  return page.evaluate(async () => {
+    const name = window.written.pop();
+    const all = new Uint8Array(window.written.reduce((n, b) => n + b.length, 0));
+    window.written.reduce((at, b) => (all.set(b, at), at + b.length), 0);
+    const digest = new Uint8Array(await crypto.subtle.digest('SHA-256', all));
+    return { name, length: all.length, chunks: window.written.length, sha: [...digest].map((b) => b.toString(16).padStart(2, '0')).join(''), saved: window.spiralcam.saved };
+  });
+}
+
 describe('a long path on every core', () => {
   test('is planned in slices into the command line report', async () => {
     const cores = await page.evaluate(() => navigator.hardwareConcurrency);
@@ -73,27 +101,7 @@ describe('a long path on every core', () => {
   });
 
   test('streams its program into the file the save dialog gives', async () => {
-    await page.evaluate(() => {
-      window.spiralcam.streamAbove = 0;
-      window.spiralcam.saved = null;
-      window.written = [];
-      window.showSaveFilePicker = async ({ suggestedName }) => ({
-        createWritable: async () => ({
-          write: async (bytes) => window.written.push(bytes.slice()),
-          close: async () => window.written.push(suggestedName),
-          abort: async () => window.written.push('aborted'),
-        }),
-      });
-    });
-    await page.click('#download-nc');
-    await page.waitForFunction(() => window.spiralcam.saved !== null, null, { timeout: 120_000 });
-    const got = await page.evaluate(async () => {
-      const name = window.written.pop();
-      const all = new Uint8Array(window.written.reduce((n, b) => n + b.length, 0));
-      window.written.reduce((at, b) => (all.set(b, at), at + b.length), 0);
-      const digest = new Uint8Array(await crypto.subtle.digest('SHA-256', all));
-      return { name, length: all.length, chunks: window.written.length, sha: [...digest].map((b) => b.toString(16).padStart(2, '0')).join(''), saved: window.spiralcam.saved };
-    });
+    const got = await streamed();
     assert.equal(got.name, `${JOB.name}.nc`);
     assert.equal(got.length, cli.nc.length);
     assert.equal(got.sha, sha256(cli.nc));
@@ -109,5 +117,20 @@ describe('a long path on every core', () => {
     await waitForState(page, ['cancelled']);
     await page.waitForTimeout(700);
     assert.equal(await page.evaluate(() => document.body.dataset.state), 'cancelled');
+  });
+
+  test('streams a program written in one piece into the file too', async () => {
+    // A space spiral is not sliced: one worker writes the whole text, which goes to the file.
+    const job = { ...JOB, name: 'space-spiral-lens-array', part: { diameter_mm: 2.0 }, strategy: { feed_mm_per_rev: 0.02, sampling: { type: 'space_spiral', points_per_rev: 360, base_spans: 8 } } };
+    const dir = mkdtempSync(join(tmpdir(), 'spiralcam-space-'));
+    const path = join(dir, `${job.name}.json`);
+    writeFileSync(path, JSON.stringify(job));
+    const whole = planWithCli(path).nc;
+    await openJob(page, job);
+    const got = await streamed();
+    assert.equal(got.name, `${job.name}.nc`);
+    assert.equal(got.length, whole.length);
+    assert.equal(got.sha, sha256(whole));
+    assert.deepEqual(got.saved, { name: got.name, streamed: true, slices: 0 });
   });
 });

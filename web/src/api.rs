@@ -265,24 +265,26 @@ impl PlannedSlice {
         self.segments.clone()
     }
 
-    /// Its program text (empty unless asked for).
-    #[wasm_bindgen(getter)]
-    pub fn nc(&self) -> Vec<u8> {
-        self.nc.clone()
+    /// Takes its program text (empty unless asked for), leaving none behind: the text is not
+    /// copied a second time in the module's memory.
+    pub fn take_nc(&mut self) -> Vec<u8> {
+        std::mem::take(&mut self.nc)
     }
 }
 
-/// A slice's figures and display state ([`PlannedSlice::part`]).
+/// A slice's figures and display state ([`PlannedSlice::part`]); no display state for a slice
+/// planned for its program.
 #[derive(serde::Serialize, serde::Deserialize)]
 struct SlicePart {
     slice: PlanSlice,
-    display: DisplayPath,
+    display: Option<DisplayPath>,
 }
 
 /// Plans the points `first` ≤ index < `end` of `job` (`end` infinite: to the path's end), the
-/// work of one of the page's workers ([`Planner::run_slice`]): their display copy and report
-/// figures, and their program text when `nc` (the header in the first slice, the end in the
-/// last). The texts of consecutive slices concatenated are the program `nc_program` writes.
+/// work of one of the page's workers ([`Planner::run_slice`]): their report figures and either
+/// their display copy or, when `nc`, their program text (the header in the first slice, the
+/// end in the last). The texts of consecutive slices concatenated are the program `nc_program`
+/// writes.
 #[wasm_bindgen]
 pub fn plan_slice(
     job: JsValue,
@@ -309,17 +311,20 @@ pub fn plan_slice(
         .first_point()
         .map_err(|e| JsError::new(&e.to_string()))?
         .theta;
-    let mut display = display_path(&planner).starting_at(range.start, theta0);
+    let mut display = (!nc).then(|| display_path(&planner).starting_at(range.start, theta0));
     let mut text = Vec::new();
     let slice = planner
         .run_slice(
             range,
             nc.then_some(&mut text as &mut dyn std::io::Write),
-            Some(&mut display),
+            display.as_mut(),
             &mut reporter(progress),
         )
         .map_err(|e| JsError::new(&e.to_string()))?;
-    let segments = std::mem::take(&mut display.segments);
+    let segments = display
+        .as_mut()
+        .map(|d| std::mem::take(&mut d.segments))
+        .unwrap_or_default();
     let part = serde_json::to_string(&SlicePart { slice, display })
         .map_err(|e| JsError::new(&e.to_string()))?;
     Ok(PlannedSlice {
@@ -357,7 +362,9 @@ pub fn plan_merge(
     for (part, count) in parts.into_iter().zip(counts) {
         let (mine, after) = rest.split_at(count as usize);
         rest = after;
-        let mut d = part.display;
+        let mut d = part
+            .display
+            .ok_or_else(|| JsError::new("slices: a part planned for its program has no drawing"))?;
         d.segments = mine.to_vec();
         display = Some(match display {
             None => d,

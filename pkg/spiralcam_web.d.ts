@@ -120,10 +120,15 @@ export class PlannedSlice {
     free(): void;
     [Symbol.dispose](): void;
     /**
-     * Takes its program text (empty unless asked for), leaving none behind: the text is not
-     * copied a second time in the module's memory.
+     * Copies its program text into `into`, exactly [`Self::nc_length`] bytes long (a view on a
+     * buffer the page handed back from a slice already written): writing a program of any
+     * length then leaves no buffers behind for the collector.
      */
-    take_nc(): Uint8Array;
+    copy_nc(into: Uint8Array): void;
+    /**
+     * The length of its program text in bytes (0 unless asked for).
+     */
+    readonly nc_length: number;
     /**
      * Its figures and display state as JSON, for [`plan_merge`].
      */
@@ -446,9 +451,10 @@ export interface InitOutput {
     readonly planned_revolution_step: (a: number) => number;
     readonly planned_z_max: (a: number) => number;
     readonly planned_z_min: (a: number) => number;
+    readonly plannedslice_copy_nc: (a: number, b: any) => [number, number];
+    readonly plannedslice_nc_length: (a: number) => number;
     readonly plannedslice_part: (a: number) => [number, number];
     readonly plannedslice_segments: (a: number) => [number, number];
-    readonly plannedslice_take_nc: (a: number) => [number, number];
     readonly power_maps: (a: any, b: number) => [number, number, number];
     readonly powermaps_cylinder_d: (a: number) => [number, number];
     readonly powermaps_mean_d: (a: number) => [number, number];
@@ -477,8 +483,8 @@ export interface InitOutput {
     readonly viewer_z_exaggeration: (a: number) => number;
     readonly viewer_zoom: (a: number, b: number) => void;
     readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_71: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_72: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_73: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h6a9a4c771fb11aad: (a: number, b: number, c: any, d: any) => void;
     readonly wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h9a591c57c7a39bce: (a: number, b: number, c: any) => void;

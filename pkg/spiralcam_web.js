@@ -332,6 +332,26 @@ export class PlannedSlice {
         wasm.__wbg_plannedslice_free(ptr, 0);
     }
     /**
+     * Copies its program text into `into`, exactly [`Self::nc_length`] bytes long (a view on a
+     * buffer the page handed back from a slice already written): writing a program of any
+     * length then leaves no buffers behind for the collector.
+     * @param {Uint8Array} into
+     */
+    copy_nc(into) {
+        const ret = wasm.plannedslice_copy_nc(this.__wbg_ptr, into);
+        if (ret[1]) {
+            throw takeFromExternrefTable0(ret[0]);
+        }
+    }
+    /**
+     * The length of its program text in bytes (0 unless asked for).
+     * @returns {number}
+     */
+    get nc_length() {
+        const ret = wasm.plannedslice_nc_length(this.__wbg_ptr);
+        return ret >>> 0;
+    }
+    /**
      * Its figures and display state as JSON, for [`plan_merge`].
      * @returns {string}
      */
@@ -355,17 +375,6 @@ export class PlannedSlice {
         const ret = wasm.plannedslice_segments(this.__wbg_ptr);
         var v1 = getArrayF32FromWasm0(ret[0], ret[1]).slice();
         wasm.__wbindgen_free(ret[0], ret[1] * 4, 4);
-        return v1;
-    }
-    /**
-     * Takes its program text (empty unless asked for), leaving none behind: the text is not
-     * copied a second time in the module's memory.
-     * @returns {Uint8Array}
-     */
-    take_nc() {
-        const ret = wasm.plannedslice_take_nc(this.__wbg_ptr);
-        var v1 = getArrayU8FromWasm0(ret[0], ret[1]).slice();
-        wasm.__wbindgen_free(ret[0], ret[1] * 1, 1);
         return v1;
     }
 }
@@ -2563,6 +2572,9 @@ function __wbg_get_imports() {
         __wbg_set_fail_op_739cc3815d38c95f: function(arg0, arg1) {
             arg0.failOp = __wbindgen_enum_GpuStencilOperation[arg1];
         },
+        __wbg_set_feb3714f475485ba: function(arg0, arg1, arg2) {
+            arg0.set(getArrayU8FromWasm0(arg1, arg2));
+        },
         __wbg_set_format_1119b9930bd324e1: function(arg0, arg1) {
             arg0.format = __wbindgen_enum_GpuTextureFormat[arg1];
         },
@@ -3175,12 +3187,12 @@ function __wbg_get_imports() {
         },
         __wbindgen_generic_0000000000000004: function(arg0, arg1) {
             // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("any")], shim_idx: 360, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_71);
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_72);
             return ret;
         },
         __wbindgen_generic_0000000000000005: function(arg0, arg1) {
             // Cast intrinsic for `Closure(Closure { owned: true, function: Function { arguments: [NamedExternref("undefined")], shim_idx: 360, ret: Result(Unit), inner_ret: Some(Result(Unit)) }, mutable: true }) -> Externref`.
-            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_72);
+            const ret = makeMutClosure(arg0, arg1, wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_73);
             return ret;
         },
         __wbindgen_generic_0000000000000006: function(arg0) {
@@ -3271,15 +3283,15 @@ function wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87(arg0, arg
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_71(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_71(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_72(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_72(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }
 }
 
-function wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_72(arg0, arg1, arg2) {
-    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_72(arg0, arg1, arg2);
+function wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_73(arg0, arg1, arg2) {
+    const ret = wasm.wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_73(arg0, arg1, arg2);
     if (ret[1]) {
         throw takeFromExternrefTable0(ret[0]);
     }

@@ -194,13 +194,16 @@ class PlannerWorker {
 
   /** Plans the slices `ranges` ([first, end) pairs) of `job`'s path of about `total` points on
    * every worker and hands the results to `take` in order (awaited); at most two slices per
-   * worker wait to be taken. */
+   * worker wait to be taken. With `nc` each slice's text comes in an ArrayBuffer that goes back
+   * to the workers once `take` is done with it (a write to a file or a Blob copies it), so a
+   * long program reuses a few buffers instead of leaving one per slice to the collector. */
   slices(job, total, ranges, nc, take) {
     this.cancel();
     while (this.lanes.length < this.size) this.lanes.push(new Lane());
     const session = this.session;
     const done = ranges.map(() => 0);
     const results = new Map();
+    const spare = [];
     let next = 0;
     let taken = 0;
     let chain = Promise.resolve();
@@ -218,13 +221,15 @@ class PlannerWorker {
           // Each slice also counts the two points before it that it computes again.
           this.onProgress(nc ? 'nc' : 'plan', Math.min(done.reduce((a, b) => a + b, 0), total), total, stage);
         };
-        lane.call('slice', job, { first, end, nc }, progress).then((m) => {
+        const buffer = nc ? spare.pop() : undefined;
+        lane.call('slice', job, { first, end, nc, buffer }, progress, buffer ? [buffer] : []).then((m) => {
           results.set(k, m);
           while (results.has(taken)) {
             const r = results.get(taken);
             results.delete(taken);
             taken += 1;
-            chain = chain.then(() => session === this.session && take(r));
+            // Once written, the text's buffer goes back to a worker for a later slice.
+            chain = chain.then(() => session === this.session && take(r)).then(() => nc && spare.push(r.nc.buffer));
           }
           if (taken === ranges.length) chain.then(resolve, fail);
           else for (const l of this.lanes) if (!l.pending) launch(l);

@@ -2,7 +2,8 @@
 // progress messages and one result ({kind: "planned" | "analysed" | "corrected" | "offsets" |
 // "verified" | "bytes" | "slicing" | "slice"}) or {kind: "error", message}. The page runs
 // several: a large plan or program is cut into slices of the path ("slice": `extra` {first, end,
-// nc}), one per worker at a time, and joined in order ("merge": `extra` {parts, segments,
+// nc, buffer}: `buffer` an ArrayBuffer of an earlier slice's text handed back for this one's),
+// one per worker at a time, and joined in order ("merge": `extra` {parts, segments,
 // counts}, answered as "planned").
 // Typed arrays are transferred, not copied.
 
@@ -60,9 +61,15 @@ self.onmessage = async (e) => {
       self.postMessage({ id, kind: 'slicing', slicing: JSON.parse(slicing(job, progress)) });
     } else if (kind === 'slice') {
       const s = plan_slice(job, extra.first, extra.end, extra.nc, progress);
-      const m = { id, kind: 'slice', part: s.part, segments: s.segments, nc: s.take_nc() };
+      // The text goes into the buffer the page handed back when it fits, else into a new one
+      // with room for the slices after it.
+      const length = s.nc_length;
+      const buffer = extra.buffer?.byteLength >= length ? extra.buffer : new ArrayBuffer(Math.ceil(length * 1.25));
+      const nc = new Uint8Array(buffer, 0, length);
+      s.copy_nc(nc);
+      const m = { id, kind: 'slice', part: s.part, segments: s.segments, nc };
       s.free();
-      self.postMessage(m, [m.segments.buffer, m.nc.buffer]);
+      self.postMessage(m, [m.segments.buffer, buffer]);
     } else if (kind === 'analyse') {
       const a = analyse(job, MAP_SIZE, progress);
       const m = {

@@ -265,10 +265,25 @@ impl PlannedSlice {
         self.segments.clone()
     }
 
-    /// Takes its program text (empty unless asked for), leaving none behind: the text is not
-    /// copied a second time in the module's memory.
-    pub fn take_nc(&mut self) -> Vec<u8> {
-        std::mem::take(&mut self.nc)
+    /// The length of its program text in bytes (0 unless asked for).
+    #[wasm_bindgen(getter)]
+    pub fn nc_length(&self) -> u32 {
+        self.nc.len() as u32
+    }
+
+    /// Copies its program text into `into`, exactly [`Self::nc_length`] bytes long (a view on a
+    /// buffer the page handed back from a slice already written): writing a program of any
+    /// length then leaves no buffers behind for the collector.
+    pub fn copy_nc(&self, into: &js_sys::Uint8Array) -> Result<(), JsError> {
+        if into.length() != self.nc_length() {
+            return Err(JsError::new(&format!(
+                "slice: a view of {} bytes for {} bytes of program text",
+                into.length(),
+                self.nc.len()
+            )));
+        }
+        into.copy_from(&self.nc);
+        Ok(())
     }
 }
 

@@ -1224,13 +1224,15 @@ async function main() {
     }
     if (!carried) {
       form.show(JSON.parse(default_job()));
-      plan();
+      await plan();
       return;
     }
     await openJob(carried.job, carried.source === 'link' ? 'the link' : carried.source);
   };
   window.addEventListener('hashchange', openLocation);
   await openLocation();
+  // The offline copy (the service worker fetching every file) waits for the first plan, so it
+  // does not share the cores with it.
   offlineCopy(status, (text) => {
     $('offline').textContent = text;
     $('offline').hidden = false;

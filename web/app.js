@@ -166,7 +166,7 @@ class PlannerWorker {
 
   /** Writes the program of `job` in slices, handing each slice's text to `write` in order
    * (awaited); false when the job is written in one piece (a program with passes, machine
-   * dynamics), then nothing is written. */
+   * dynamics, a space spiral), then nothing is written. */
   async program(job, write) {
     const how = await this.slicing(job, 'nc');
     if (!how) return false;
@@ -202,6 +202,7 @@ class PlannerWorker {
     while (this.lanes.length < this.size) this.lanes.push(new Lane());
     const session = this.session;
     const done = ranges.map(() => 0);
+    let sum = 0;
     const results = new Map();
     const spare = [];
     let next = 0;
@@ -217,9 +218,10 @@ class PlannerWorker {
         const k = next++;
         const [first, end] = ranges[k];
         const progress = (d, _t, stage) => {
+          sum += d - done[k];
           done[k] = d;
           // Each slice also counts the two points before it that it computes again.
-          this.onProgress(nc ? 'nc' : 'plan', Math.min(done.reduce((a, b) => a + b, 0), total), total, stage);
+          this.onProgress(nc ? 'nc' : 'plan', Math.min(sum, total), total, stage);
         };
         const buffer = nc ? spare.pop() : undefined;
         lane.call('slice', job, { first, end, nc, buffer }, progress, buffer ? [buffer] : []).then((m) => {

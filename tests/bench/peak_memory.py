@@ -1,8 +1,12 @@
 """Peak memory of `spiralcam plan` (NC and CSV written to files) for 1 M and 10 M points.
 
 Memory must stay flat: the planner streams, so the peak resident set should not grow with the
-point count. Prints one line per size. Usage: python3 tests/bench/peak_memory.py [BINARY]
-(default target/release/spiralcam; build it with `cargo build --release`).
+point count. Prints one line per size. Then the machine dynamics, which hold the path (1 M points
+of the sine grid `sinusoid-grid-fts.json` at 1 000 points a revolution, each kind of split and
+machine limits alone): their peak against the estimate the plan is admitted on
+(`dynamics::BYTES_PER_POINT`, the report's `estimate.dynamics_memory_bytes`), each run measured
+alone. Usage: python3 tests/bench/peak_memory.py [BINARY] (default target/release/spiralcam;
+build it with `cargo build --release`).
 """
 import json
 import os
@@ -45,6 +49,51 @@ def main():
             )
             for p in (nc, csv):
                 os.remove(p)
+        dynamics(binary, tmp)
+
+
+def alone(command):
+    """Runs `command`; its peak resident set, KiB (measured in a child of its own)."""
+    probe = (
+        "import resource, subprocess, sys; subprocess.run(sys.argv[1:], check=True, "
+        "stdout=subprocess.DEVNULL); print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)"
+    )
+    out = subprocess.run([sys.executable, "-c", probe, *command], check=True, capture_output=True)
+    return int(out.stdout.split()[-1])
+
+
+def dynamics(binary, tmp):
+    """The dynamics rows (module docs)."""
+    with open(os.path.join(ROOT, "crate", "jobs", "sinusoid-grid-fts.json")) as f:
+        base = json.load(f)
+    base["strategy"]["feed_mm_per_rev"] = 0.004
+    base["strategy"]["sampling"] = {"type": "constant_angle", "points_per_rev": 1000}
+    kinds = {
+        "automatic split": {"type": "auto"},
+        "symmetric split": {"type": "symmetric"},
+        "low-pass split 20 Hz": {"type": "low_pass", "cutoff_hz": 20.0},
+        "machine limits, no split": None,
+    }
+    for name, split in kinds.items():
+        job = json.loads(json.dumps(base))
+        if split is None:
+            del job["strategy"]["split"]
+        else:
+            job["strategy"]["split"] = split
+        path, nc, report = (os.path.join(tmp, n) for n in ("dyn.json", "dyn.ngc", "dyn-report.json"))
+        with open(path, "w") as f:
+            json.dump(job, f)
+        start = time.perf_counter()
+        peak = alone([binary, "plan", path, "--nc", nc, "--report", report])
+        seconds = time.perf_counter() - start
+        with open(report) as f:
+            r = json.load(f)
+        estimate = r["estimate"]["dynamics_memory_bytes"]
+        print(
+            f"dynamics, {name}: {r['points']} points, peak RSS {peak / 1024:.0f} MiB "
+            f"(estimate {estimate / 2**20:.0f} MiB), {seconds:.2f} s"
+        )
+        os.remove(nc)
 
 
 if __name__ == "__main__":

@@ -44,6 +44,7 @@ use crate::job::MachineSpec;
 use crate::path::Location;
 use crate::path::PathPoint;
 use serde::Serialize;
+use std::borrow::Borrow;
 use std::f64::consts::TAU;
 
 /// Violations listed per axis and quantity; further ones are only counted.
@@ -396,8 +397,9 @@ impl Block {
     }
 }
 
-/// Checks the axes of `samples` (the path in order) against `machine` at its spindle speed;
-/// see the module docs for the method. Never panics; O(1) memory besides the lists.
+/// Checks the axes of `samples` (the path in order: a slice, or computed on the fly) against
+/// `machine` at its spindle speed; see the module docs for the method. Never panics; O(1)
+/// memory besides the lists.
 ///
 /// ```
 /// use spiralcam::dynamics::axis_checks::{AxisSample, check_axes};
@@ -413,7 +415,10 @@ impl Block {
 /// assert!((r.x.max_velocity_mm_per_s - 1.0).abs() < 1e-15);
 /// assert!((r.block_rate.required_hz - 4.0).abs() < 1e-12);
 /// ```
-pub fn check_axes(samples: &[AxisSample], machine: &MachineSpec) -> AxisReport {
+pub fn check_axes(
+    samples: impl IntoIterator<Item = impl Borrow<AxisSample>>,
+    machine: &MachineSpec,
+) -> AxisReport {
     let omega = machine.spindle_rpm / 60.0 * TAU;
     let slide = |s: Option<&crate::job::machine::SlideSpec>| {
         (
@@ -452,8 +457,9 @@ pub fn check_axes(samples: &[AxisSample], machine: &MachineSpec) -> AxisReport {
     let (mut w_min, mut w_max) = (f64::INFINITY, f64::NEG_INFINITY);
     let (mut zero_time, mut zero_time_count) = (Vec::new(), 0u64);
     // The last finite sample and the block that ended there (None after a zero-time block).
-    let mut last: Option<(usize, &AxisSample, Option<Block>)> = None;
-    for (i, s) in samples.iter().enumerate() {
+    let mut last: Option<(usize, AxisSample, Option<Block>)> = None;
+    for (i, s) in samples.into_iter().enumerate() {
+        let s = *s.borrow();
         if ![s.theta, s.rho_mm, s.x_mm, s.z_mm, s.w_mm]
             .iter()
             .all(|v| v.is_finite())
@@ -468,25 +474,25 @@ pub fn check_axes(samples: &[AxisSample], machine: &MachineSpec) -> AxisReport {
             last = Some((i, s, None));
             continue;
         };
-        let block = Block::between(prev, s);
+        let block = Block::between(&prev, &s);
         match block {
             None => {
                 zero_time_count += 1;
                 if zero_time.len() < MAX_LISTED {
-                    zero_time.push(SampleAt::new(i, s));
+                    zero_time.push(SampleAt::new(i, &s));
                 }
             }
             Some(b) => {
                 total_angle += b.dtheta;
-                rate.add(omega / b.dtheta, i, s);
+                rate.add(omega / b.dtheta, i, &s);
                 for (axis, slope) in axes.iter_mut().zip(b.slopes) {
-                    axis.velocity.add(slope.abs() * omega, i, s);
+                    axis.velocity.add(slope.abs() * omega, i, &s);
                 }
                 if let Some(a) = before {
                     let h = (a.dtheta + b.dtheta) / 2.0;
                     for (axis, (s1, s2)) in axes.iter_mut().zip(a.slopes.iter().zip(b.slopes)) {
                         let acc = ((s2 - s1) / h).abs() * omega * omega;
-                        axis.acceleration.add(acc, j, prev);
+                        axis.acceleration.add(acc, j, &prev);
                     }
                 }
             }

@@ -15,8 +15,10 @@
 //!   the controller's bilinear interpolation of the table reproduces W within the job's
 //!   tolerance (a PMAC-style 2-D compensation table, [`crate::nc::fts_grid`]).
 //!
-//! This module runs them over the whole path in memory (the FFT needs it: about 100 bytes a
-//! point), before the NC program is written, when the job asks for it: a `strategy.split`, or
+//! This module runs them over the whole path in memory (the FFTs need it: at most
+//! [`BYTES_PER_POINT`] bytes a point at the peak, where the transforms' buffers, scratch and
+//! twiddles meet the path's columns and grids; the transforms take lengths with small factors
+//! where the analysis allows, [`spectrum::fast_length`]), before the NC program is written, when the job asks for it: a `strategy.split`, or
 //! any limit in `machine` (slides, FTS, block rate). The program is then written in a second
 //! pass with the slide's share `Z` and the servo's `W` ([`crate::nc::NcWriter::point_split`]).
 
@@ -65,8 +67,14 @@ impl From<crate::field::FieldError> for DynamicsError {
 /// Bins of the spectrum kept for display (peaks survive the decimation).
 pub const SPECTRUM_BINS: usize = 2048;
 
-/// The most points the dynamics analyse (about 1.7 GB in memory).
+/// The most points the dynamics analyse (about 2.4 GB in memory).
 pub const MAX_POINTS: u64 = 8_000_000;
+
+/// The peak memory of the dynamics per path point, bytes, with some room: 250–277 MiB
+/// (262–290 MB) of peak resident set for 1 000 001 points of the sine grid
+/// (`sinusoid-grid-fts.json` at 1 000 points a revolution) with each kind of split and with
+/// machine limits alone (`python3 tests/bench/peak_memory.py`).
+pub const BYTES_PER_POINT: u64 = 300;
 
 /// Radius bands of the instantaneous frequency.
 pub const FREQUENCY_BANDS: usize = 32;
@@ -363,7 +371,8 @@ impl Dynamics {
                 format!("{total} points"),
                 format!(
                     "at most {MAX_POINTS} points when the machine dynamics run (a split or \
-                     machine limits): they hold the path in memory, about 210 bytes a point"
+                     machine limits): they hold the path in memory, about {BYTES_PER_POINT} \
+                     bytes a point"
                 ),
             )
             .into());
@@ -421,26 +430,19 @@ impl Dynamics {
                 (Some(report), Some(s.z_slide_mm), Some(s.w_fts_mm))
             }
         };
-        let samples: Vec<AxisSample> = (0..path.theta.len())
-            .map(|i| {
-                let slide = z_slide.as_ref().and_then(|z| z.get(i)).copied();
-                AxisSample::new(path.theta[i], signal.rho_mm[i], signal.z_mm[i], slide)
-            })
-            .collect();
-        let axes = check_axes(&samples, machine);
+        let samples = (0..path.theta.len()).map(|i| {
+            let slide = z_slide.as_ref().and_then(|z| z.get(i)).copied();
+            AxisSample::new(path.theta[i], signal.rho_mm[i], signal.z_mm[i], slide)
+        });
+        let axes = check_axes(samples, machine);
         let grid = signal.uniform().ok();
         // The slide's Z on the grid: the path's, or its share of a split path resampled alike.
-        let slide_grid = match &z_slide {
-            None => None,
-            Some(z) => PathSignal {
-                angle_rad: signal.angle_rad.clone(),
-                rho_mm: signal.rho_mm.clone(),
-                z_mm: z.clone(),
-            }
-            .uniform()
-            .ok(),
+        let slide_grid = z_slide.as_ref().map(|z| signal.uniform_values(z));
+        let slide_z = match (&slide_grid, &grid) {
+            (Some(z), Some(_)) => Some(&z[..]),
+            (None, Some(g)) => Some(&g.z_mm[..]),
+            (_, None) => None,
         };
-        let slide_z = slide_grid.as_ref().or(grid.as_ref()).map(|g| &g.z_mm[..]);
         let bandwidth = SlideBandwidths {
             x: BandwidthCheck::of(
                 grid.as_ref().map(|g| (g, &g.rho_mm[..])),

@@ -235,9 +235,28 @@ impl PathSignal {
     pub fn uniform(&self) -> Result<UniformSignal, SignalError> {
         self.check()?;
         let m = self.samples_per_rev();
+        Ok(UniformSignal {
+            samples_per_rev: m,
+            z_mm: self.resample(&self.z_mm, m),
+            rho_mm: self.resample(&self.rho_mm, m),
+        })
+    }
+
+    /// `values` (one per point) on the grid of [`Self::uniform`]; empty when the path cannot be
+    /// resampled. The slide's share of a split path is analysed on the path's own grid this
+    /// way, without a copy of the path.
+    pub fn uniform_values(&self, values: &[f64]) -> Vec<f64> {
+        if self.check().is_err() || values.len() != self.len() {
+            return Vec::new();
+        }
+        self.resample(values, self.samples_per_rev())
+    }
+
+    /// `values` linearly interpolated at `m` samples per revolution from the first point.
+    fn resample(&self, values: &[f64], m: usize) -> Vec<f64> {
         let step = TAU / m as f64;
         let count = ((self.span_rad() / step + 1e-6).floor() as usize + 1).max(2);
-        let (mut z, mut rho) = (Vec::with_capacity(count), Vec::with_capacity(count));
+        let mut out = Vec::with_capacity(count);
         let mut k = 0;
         for j in 0..count {
             let phi = j as f64 * step;
@@ -250,14 +269,9 @@ impl PathSignal {
             } else {
                 1.0
             };
-            z.push(self.z_mm[k] + t * (self.z_mm[k + 1] - self.z_mm[k]));
-            rho.push(self.rho_mm[k] + t * (self.rho_mm[k + 1] - self.rho_mm[k]));
+            out.push(values[k] + t * (values[k + 1] - values[k]));
         }
-        Ok(UniformSignal {
-            samples_per_rev: m,
-            z_mm: z,
-            rho_mm: rho,
-        })
+        out
     }
 
     /// The largest slope and curvature of `values` (one per point) against the spindle angle,
@@ -517,6 +531,19 @@ pub(crate) mod tests {
         for (a, b) in back.iter().zip(&s.z_mm) {
             assert!((a - b).abs() < 1e-12);
         }
+        // Any other column lands on the same grid: a quadratic in angle is interpolated
+        // linearly between the two points around each sample.
+        let q: Vec<f64> = s.angle_rad.iter().map(|a| a * a).collect();
+        let on_grid = s.uniform_values(&q);
+        assert_eq!(on_grid.len(), u.len());
+        for (j, v) in on_grid.iter().enumerate() {
+            let phi = j as f64 * u.step_rad();
+            let k = s.angle_rad.partition_point(|a| *a < phi).clamp(1, s.len() - 1);
+            let (a0, a1) = (s.angle_rad[k - 1], s.angle_rad[k]);
+            let linear = a0 * a0 + (phi - a0) / (a1 - a0) * (a1 * a1 - a0 * a0);
+            assert!((v - linear).abs() < 1e-12, "sample {j}: {v} against {linear}");
+        }
+        assert!(s.uniform_values(&q[1..]).is_empty());
     }
 
     #[test]

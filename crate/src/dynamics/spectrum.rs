@@ -29,8 +29,9 @@
 //! frequencies doubled, negative ones removed). A record cut off at its ends has a Hilbert
 //! transform that errs like 1/d at d periods from the cut, over the whole record (1e-3 in the
 //! middle of 30 revolutions of a tone with a mirror-image extension); so the first and last
-//! revolution are rolled off by a raised cosine and the record is padded with as many zeros
-//! (the FFT then does not join the rim to the centre), and those two revolutions are left out of
+//! revolution are rolled off by a raised cosine and the record is padded with at least as many
+//! zeros, to a length `2^a·3^b` ([`fast_length`]; the FFT then does not join the rim to the
+//! centre), and those two revolutions are left out of
 //! the band figures (on paths of three revolutions or more). The frequency between samples j
 //! and j+1 is `arg(a_{j+1}·ā_j)/2π` cycles per sample (no phase unwrapping), weighted by the
 //! envelope |a|. Per radius band the figure is the envelope-weighted median and 95th
@@ -212,8 +213,27 @@ pub fn highest_significant_cycles_per_rev(grid: &UniformSignal, values: &[f64]) 
     })
 }
 
+/// The smallest length `2^a·3^b ≥ n` (even when `even`): rustfft transforms such lengths by
+/// its radix-2/3 kernels; a length with a large prime factor (a path of 1 000 001 points has
+/// 9 901) goes through Bluestein's algorithm, about five times slower and with scratch and
+/// twiddles of four times the length. Consecutive such lengths differ by at most 1/8 above
+/// 2¹⁰, so the padding costs little.
+pub fn fast_length(n: usize, even: bool) -> usize {
+    let least = if even { 2 } else { 1 };
+    let mut best = usize::MAX;
+    let mut three = 1usize;
+    loop {
+        best = best.min(three * n.div_ceil(three).next_power_of_two().max(least));
+        if three >= n {
+            return best;
+        }
+        three *= 3;
+    }
+}
+
 /// The analytic signal of `x` by the FFT, the first and last `taper` samples rolled off by a
-/// raised cosine and the record padded with as many zeros (module docs).
+/// raised cosine and the record padded with at least as many zeros, to a [`fast_length`]
+/// (module docs).
 pub fn analytic_signal(x: &[f64], taper: usize) -> Vec<Complex<f64>> {
     let n = x.len();
     let taper = taper.min(n / 2);
@@ -225,17 +245,18 @@ pub fn analytic_signal(x: &[f64], taper: usize) -> Vec<Complex<f64>> {
             1.0
         }
     };
-    let mut buf: Vec<Complex<f64>> = (0..2 * n)
+    let len = fast_length(2 * n, true);
+    let half = len / 2;
+    let mut buf: Vec<Complex<f64>> = (0..len)
         .map(|j| Complex::new(if j < n { x[j] * roll(j) } else { 0.0 }, 0.0))
         .collect();
-    let len = buf.len();
     let mut planner = FftPlanner::new();
     planner.plan_fft_forward(len).process(&mut buf);
     for (j, c) in buf.iter_mut().enumerate() {
         let gain = match j {
             0 => 1.0,
-            j if j == n => 1.0,
-            j if j < n => 2.0,
+            j if j == half => 1.0,
+            j if j < half => 2.0,
             _ => 0.0,
         };
         *c *= gain / len as f64;
@@ -333,6 +354,35 @@ fn analysable(signal: &PathSignal, spindle_rpm: f64) -> Option<UniformSignal> {
 mod tests {
     use super::*;
     use crate::dynamics::path_signal::tests::spiral;
+
+    #[test]
+    fn fast_lengths_are_the_smallest_products_of_twos_and_threes() {
+        // Every 2^a·3^b up to 2^40, sorted: the brute-force reference.
+        let mut smooth: Vec<usize> = (0..=40u32)
+            .flat_map(|a| (0..=26u32).map(move |b| (a, b)))
+            .filter_map(|(a, b)| 2usize.checked_pow(a)?.checked_mul(3usize.checked_pow(b)?))
+            .filter(|&v| v <= 1 << 40)
+            .collect();
+        smooth.sort_unstable();
+        let first = |n: usize, even: bool| {
+            *smooth
+                .iter()
+                .find(|&&v| v >= n && (!even || v % 2 == 0))
+                .unwrap()
+        };
+        let sizes = (0..5000).chain([1_000_001, 1_032_001, 2_000_002, 28_581_761, (1 << 40) - 1]);
+        for n in sizes {
+            assert_eq!(fast_length(n, false), first(n, false), "n = {n}");
+            assert_eq!(fast_length(n, true), first(n, true), "n = {n}, even");
+        }
+        // At most 1/8 of padding above 2^10 (the module's claim).
+        for n in 1024..200_000 {
+            assert!(
+                fast_length(n, true) as f64 <= n as f64 * 1.125 + 2.0,
+                "n = {n}"
+            );
+        }
+    }
 
     #[test]
     fn a_tone_between_bins_is_found_at_k_n_over_60_with_its_amplitude() {

@@ -15,7 +15,8 @@
 //! `H(k) = 1/(1 + (k/k_c)^8)` (k the frequency, k_c the cutoff), the magnitude of a 4th-order
 //! Butterworth filter run forwards and backwards (H(k_c) = ½, flat to 0.4 % below k_c/2, −48 dB
 //! per octave above), applied in the frequency domain to the uniform grid of the path extended
-//! by [`EXTENSION_REVS`] revolutions before the rim and after the centre. A surface is periodic
+//! by [`EXTENSION_REVS`] revolutions before the rim and at least as many after the centre (to
+//! a length the FFT transforms fast, [`crate::dynamics::spectrum::fast_length`]). A surface is periodic
 //! in θ, so the extension repeats the first (last) revolution of the non-symmetric residual on
 //! the symmetric part continued along its tangent: the joins are continuous in value and slope
 //! to within the change of the part over one revolution (a mirror image instead leaves a slope
@@ -50,7 +51,7 @@
 use crate::dynamics::path_signal::{
     PathSignal, SignalError, UniformSignal, hz, omega, peak_to_valley,
 };
-use crate::dynamics::spectrum::highest_significant_cycles_per_rev;
+use crate::dynamics::spectrum::{fast_length, highest_significant_cycles_per_rev};
 use crate::field::{FieldError, positive};
 use crate::job::SplitSpec;
 use rustfft::num_complex::Complex;
@@ -230,7 +231,9 @@ struct LowPass {
 
 impl LowPass {
     fn new(grid: &UniformSignal) -> Self {
-        let extended = extend(grid, EXTENSION_REVS * grid.samples_per_rev);
+        let head = EXTENSION_REVS * grid.samples_per_rev;
+        let len = fast_length(grid.len() + 2 * head, false);
+        let extended = extend(grid, head, len - grid.len() - head);
         let mut planner = FftPlanner::new();
         let mut spectrum: Vec<Complex<f64>> =
             extended.iter().map(|&v| Complex::new(v, 0.0)).collect();
@@ -263,10 +266,10 @@ impl LowPass {
     }
 }
 
-/// The grid signal with `e` samples added before and after: the first (last) revolution of the
-/// non-symmetric residual repeated, on the symmetric part continued along its tangent over one
-/// revolution (module docs).
-fn extend(grid: &UniformSignal, e: usize) -> Vec<f64> {
+/// The grid signal with `e` samples added before and `tail` after: the first (last) revolution
+/// of the non-symmetric residual repeated, on the symmetric part continued along its tangent
+/// over one revolution (module docs).
+fn extend(grid: &UniformSignal, e: usize, tail: usize) -> Vec<f64> {
     let (x, m) = (&grid.z_mm, grid.samples_per_rev);
     let n = x.len();
     let sym = grid.symmetric_part(x);
@@ -282,7 +285,7 @@ fn extend(grid: &UniformSignal, e: usize) -> Vec<f64> {
         let j = (rev - back % rev) % rev;
         residual(j) + sym[0] - slope_head * back as f64
     });
-    let tail = (1..=e).map(|ahead| {
+    let tail = (1..=tail).map(|ahead| {
         let j = n - 1 - (rev - ahead % rev) % rev;
         residual(j) + sym[n - 1] + slope_tail * ahead as f64
     });
@@ -308,7 +311,7 @@ pub fn split(
         rpm: spindle_rpm,
     };
     match spec {
-        SplitSpec::Symmetric => Ok(ctx.finish(grid.symmetric_part(&grid.z_mm), None, limits)),
+        SplitSpec::Symmetric => Ok(ctx.finish(&grid.symmetric_part(&grid.z_mm), None, limits)),
         SplitSpec::LowPass { cutoff_hz } => {
             let nyquist = hz(grid.samples_per_rev as f64 / 2.0, spindle_rpm);
             if !(cutoff_hz.is_finite() && *cutoff_hz > 0.0 && *cutoff_hz <= nyquist) {
@@ -322,7 +325,9 @@ pub fn split(
                 .into());
             }
             let k_c = cutoff_hz * 60.0 / spindle_rpm;
-            Ok(ctx.finish(LowPass::new(&grid).apply(k_c), Some(k_c), limits))
+            // The filter is let go before the checks' own transforms.
+            let z_grid = LowPass::new(&grid).apply(k_c);
+            Ok(ctx.finish(&z_grid, Some(k_c), limits))
         }
         SplitSpec::Auto => {
             let Some(limits) = limits else {
@@ -364,11 +369,11 @@ impl Context<'_> {
     /// W = z − Z, and the verdict.
     fn finish(
         &self,
-        z_grid: Vec<f64>,
+        z_grid: &[f64],
         cutoff_cpr: Option<f64>,
         limits: Option<&SplitLimits>,
     ) -> Split {
-        let z = self.grid.at_path(&z_grid, &self.signal.angle_rad);
+        let z = self.grid.at_path(z_grid, &self.signal.angle_rad);
         let w: Vec<f64> = self
             .signal
             .z_mm
@@ -378,11 +383,7 @@ impl Context<'_> {
             .collect();
         let verdict = match limits {
             None => Verdict::Unchecked,
-            Some(l) => verdict(
-                self.checks((&z, &z_grid), &w, cutoff_cpr, l),
-                self.rpm,
-                None,
-            ),
+            Some(l) => verdict(self.checks((&z, z_grid), &w, cutoff_cpr, l), self.rpm, None),
         };
         Split {
             z_slide_mm: z,
@@ -408,15 +409,15 @@ impl Context<'_> {
                 },
             };
         }
-        let filter = LowPass::new(self.grid);
-        let k = self.lowest_cutoff(&filter, limits.fts_stroke_mm);
-        let mut s = self.finish(filter.apply(k), Some(k), None);
-        let checks = self.checks(
-            (&s.z_slide_mm, &filter.apply(k)),
-            &s.w_fts_mm,
-            Some(k),
-            limits,
-        );
+        drop(zero);
+        // The filter's spectrum is let go before the checks' own transforms.
+        let (k, z_grid) = {
+            let filter = LowPass::new(self.grid);
+            let k = self.lowest_cutoff(&filter, limits.fts_stroke_mm);
+            (k, filter.apply(k))
+        };
+        let mut s = self.finish(&z_grid, Some(k), None);
+        let checks = self.checks((&s.z_slide_mm, &z_grid), &s.w_fts_mm, Some(k), limits);
         s.verdict = verdict(checks, self.rpm, feasible_rpm(&alone, self.rpm));
         s
     }

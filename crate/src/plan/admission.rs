@@ -33,9 +33,6 @@ pub const PROBES: usize = 128;
 /// The default limit on the files a plan writes together, bytes: 4 GB.
 pub const DEFAULT_MAX_OUTPUT_BYTES: u64 = 4_000_000_000;
 
-/// Memory the machine dynamics hold per point, bytes (measured: 216 MB for 1 M points).
-const DYNAMICS_BYTES_PER_POINT: u64 = 216;
-
 /// The bounds a job is admitted under.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Limits {
@@ -115,7 +112,7 @@ impl Planner {
             csv_bytes: crate::nc::csv::HEADER.len() as u64 + (w.csv_row * n) as u64,
             fts_table_bytes: split
                 .then(|| crate::nc::fts_table::HEADER.len() as u64 + (w.fts_row * n) as u64),
-            dynamics_memory_bytes: (passes == 2).then(|| path_points * DYNAMICS_BYTES_PER_POINT),
+            dynamics_memory_bytes: (passes == 2).then(|| path_points * dynamics::BYTES_PER_POINT),
             fts_grid_bytes: split
                 .then(|| crate::nc::fts_grid::max_bytes(dynamics::fts_grid::MAX_ENTRIES)),
             seconds,

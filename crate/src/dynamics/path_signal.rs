@@ -538,10 +538,16 @@ pub(crate) mod tests {
         assert_eq!(on_grid.len(), u.len());
         for (j, v) in on_grid.iter().enumerate() {
             let phi = j as f64 * u.step_rad();
-            let k = s.angle_rad.partition_point(|a| *a < phi).clamp(1, s.len() - 1);
+            let k = s
+                .angle_rad
+                .partition_point(|a| *a < phi)
+                .clamp(1, s.len() - 1);
             let (a0, a1) = (s.angle_rad[k - 1], s.angle_rad[k]);
             let linear = a0 * a0 + (phi - a0) / (a1 - a0) * (a1 * a1 - a0 * a0);
-            assert!((v - linear).abs() < 1e-12, "sample {j}: {v} against {linear}");
+            assert!(
+                (v - linear).abs() < 1e-12,
+                "sample {j}: {v} against {linear}"
+            );
         }
         assert!(s.uniform_values(&q[1..]).is_empty());
     }

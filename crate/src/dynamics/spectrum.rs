@@ -100,21 +100,22 @@ pub struct BandFrequency {
     pub amplitude_um: f64,
 }
 
-/// The Hann amplitude spectrum of `x`, bins 0 … N/2, in the unit of `x`.
-pub fn hann_amplitudes(x: &[f64]) -> Vec<f64> {
+/// The Hann amplitude spectrum of `x` (N samples) padded with zeros to `len ≥ N` samples,
+/// bins 0 … len/2 (bin j at j/len cycles per sample), in the unit of `x`. The peaks' three-bin
+/// relations hold for `len = N` only; a longer `len` samples the same spectrum more finely.
+pub fn hann_amplitudes(x: &[f64], len: usize) -> Vec<f64> {
     let n = x.len();
     if n < 2 {
         return Vec::new();
     }
+    let len = len.max(n);
     let window = |j: usize| 0.5 - 0.5 * (TAU * j as f64 / n as f64).cos();
-    let mut buf: Vec<Complex<f64>> = x
-        .iter()
-        .enumerate()
-        .map(|(j, v)| Complex::new(v * window(j), 0.0))
+    let mut buf: Vec<Complex<f64>> = (0..len)
+        .map(|j| Complex::new(if j < n { x[j] * window(j) } else { 0.0 }, 0.0))
         .collect();
-    FftPlanner::new().plan_fft_forward(n).process(&mut buf);
+    FftPlanner::new().plan_fft_forward(len).process(&mut buf);
     let gain: f64 = (0..n).map(window).sum();
-    buf[..=n / 2]
+    buf[..=len / 2]
         .iter()
         .enumerate()
         .map(|(j, c)| c.norm() * if j == 0 { 1.0 } else { 2.0 } / gain)
@@ -164,7 +165,7 @@ pub fn amplitude_spectrum(signal: &PathSignal, spindle_rpm: f64, max_bins: usize
     let Some(grid) = analysable(signal, spindle_rpm) else {
         return Spectrum::default();
     };
-    let a = hann_amplitudes(&residual(&grid, &grid.z_mm));
+    let a = hann_amplitudes(&residual(&grid, &grid.z_mm), grid.len());
     let cpr_per_bin = grid.samples_per_rev as f64 / grid.len() as f64;
     let to_hz = |bin: f64| hz(bin * cpr_per_bin, spindle_rpm);
     let group = a.len().div_ceil(max_bins.max(1)).max(1);
@@ -203,14 +204,17 @@ pub fn amplitude_spectrum(signal: &PathSignal, spindle_rpm: f64, max_bins: usize
 
 /// The highest frequency, cycles per revolution, at which the Hann spectrum of the
 /// non-symmetric part of `values` (one per grid sample) reaches [`SIGNIFICANT_FRACTION`] of its
-/// largest amplitude (and 1 pm); 0 when there is none. The bandwidth figure of a channel.
+/// largest amplitude (and 1 pm); 0 when there is none. The bandwidth figure of a channel. The
+/// record is padded to a [`fast_length`] (at most 1/8 longer, so the spectrum is sampled a
+/// little more finely than its bins, and the transform is not Bluestein's).
 pub fn highest_significant_cycles_per_rev(grid: &UniformSignal, values: &[f64]) -> f64 {
-    let a = hann_amplitudes(&residual(grid, values));
+    let len = fast_length(values.len(), false);
+    let a = hann_amplitudes(&residual(grid, values), len);
     let top = a.iter().copied().fold(0.0, f64::max);
     let floor = (SIGNIFICANT_FRACTION * top).max(NEGLIGIBLE_MM);
-    a.iter().rposition(|&v| v >= floor).map_or(0.0, |j| {
-        j as f64 * grid.samples_per_rev as f64 / values.len() as f64
-    })
+    a.iter()
+        .rposition(|&v| v >= floor)
+        .map_or(0.0, |j| j as f64 * grid.samples_per_rev as f64 / len as f64)
 }
 
 /// The smallest length `2^a·3^b ≥ n` (even when `even`): rustfft transforms such lengths by

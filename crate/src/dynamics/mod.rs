@@ -18,9 +18,10 @@
 //! This module runs them over the whole path in memory (the FFTs need it: at most
 //! [`BYTES_PER_POINT`] bytes a point at the peak, where the transforms' buffers, scratch and
 //! twiddles meet the path's columns and grids; the transforms take lengths with small factors
-//! where the analysis allows, [`spectrum::fast_length`]), before the NC program is written, when the job asks for it: a `strategy.split`, or
-//! any limit in `machine` (slides, FTS, block rate). The program is then written in a second
-//! pass with the slide's share `Z` and the servo's `W` ([`crate::nc::NcWriter::point_split`]).
+//! where the analysis allows, [`spectrum::fast_length`]), before the NC program is written,
+//! when the job asks for it: a `strategy.split`, or any limit in `machine` (slides, FTS, block
+//! rate). The program is then written in a second pass with the slide's share `Z` and the
+//! servo's `W` ([`crate::nc::NcWriter::point_split`]).
 
 pub mod axis_checks;
 pub mod fts_grid;

@@ -31,8 +31,8 @@
 //! middle of 30 revolutions of a tone with a mirror-image extension); so the first and last
 //! revolution are rolled off by a raised cosine and the record is padded with at least as many
 //! zeros, to a length `2^a·3^b` ([`fast_length`]; the FFT then does not join the rim to the
-//! centre), and those two revolutions are left out of
-//! the band figures (on paths of three revolutions or more). The frequency between samples j
+//! centre), and those two revolutions are left out of the band figures (on paths of three
+//! revolutions or more). The frequency between samples j
 //! and j+1 is `arg(a_{j+1}·ā_j)/2π` cycles per sample (no phase unwrapping), weighted by the
 //! envelope |a|. Per radius band the figure is the envelope-weighted median and 95th
 //! percentile: where the signal is not narrow-band (a frequency crossing zero, two components

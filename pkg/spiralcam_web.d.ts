@@ -386,8 +386,8 @@ export function setup_offsets(job: any, params: string): string;
 /**
  * Whether `job` can be planned in slices on several workers, as JSON:
  * `{"points": N, "sliced": true}`, or `{"points": N, "sliced": false, "why": "…"}` (a program
- * with passes, machine dynamics, a space spiral: [`Planner::slicing`]), `N` the path's point count (an estimate for constant-arc and
- * surface-dependent samplings).
+ * with passes, machine dynamics, a space spiral: [`Planner::slicing`]), `N` the path's point
+ * count (an estimate for constant-arc and surface-dependent samplings).
  */
 export function slicing(job: any, progress: Function): string;
 

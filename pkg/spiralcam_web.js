@@ -1105,8 +1105,8 @@ export function setup_offsets(job, params) {
 /**
  * Whether `job` can be planned in slices on several workers, as JSON:
  * `{"points": N, "sliced": true}`, or `{"points": N, "sliced": false, "why": "…"}` (a program
- * with passes, machine dynamics, a space spiral: [`Planner::slicing`]), `N` the path's point count (an estimate for constant-arc and
- * surface-dependent samplings).
+ * with passes, machine dynamics, a space spiral: [`Planner::slicing`]), `N` the path's point
+ * count (an estimate for constant-arc and surface-dependent samplings).
  * @param {any} job
  * @param {Function} progress
  * @returns {string}

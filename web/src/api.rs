@@ -230,8 +230,8 @@ fn planned(planner: &Planner, report: String, display: DisplayPath) -> Result<Pl
 
 /// Whether `job` can be planned in slices on several workers, as JSON:
 /// `{"points": N, "sliced": true}`, or `{"points": N, "sliced": false, "why": "…"}` (a program
-/// with passes, machine dynamics, a space spiral: [`Planner::slicing`]), `N` the path's point count (an estimate for constant-arc and
-/// surface-dependent samplings).
+/// with passes, machine dynamics, a space spiral: [`Planner::slicing`]), `N` the path's point
+/// count (an estimate for constant-arc and surface-dependent samplings).
 #[wasm_bindgen]
 pub fn slicing(job: JsValue, progress: &js_sys::Function) -> Result<String, JsError> {
     let planner = sliced_planner(job, progress)?;

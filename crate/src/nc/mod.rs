@@ -416,6 +416,15 @@ impl<W: Write> NcWriter<W> {
         Ok(())
     }
 
+    /// Writes blocks another writer formatted ([`Self::resume`]d after this one's last block),
+    /// the last of them reaching the height `last_z`.
+    pub fn append(&mut self, blocks: &[u8], last_z: f64) -> Result<(), NcError> {
+        self.out.write_all(blocks)?;
+        self.bytes += blocks.len() as u64;
+        self.last_z = Some(last_z);
+        Ok(())
+    }
+
     /// Bytes written so far.
     pub fn bytes(&self) -> u64 {
         self.bytes

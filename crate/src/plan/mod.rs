@@ -408,14 +408,24 @@ impl<'a> Extras<'a> {
 
     /// The slide's share of `p`'s height when the path is split.
     fn slide(&self, p: &PathPoint) -> Result<Option<f64>, PlanError> {
-        match self.z_slide.map(|z| z.get(p.index as usize)) {
-            None => Ok(None),
-            Some(Some(&z)) => Ok(Some(z)),
-            Some(None) => Err(PlanError::SplitLength(p.index)),
-        }
+        slide_of(self.z_slide, p)
     }
 
     fn point(&mut self, p: &PathPoint, folds: bool) -> Result<(), PlanError> {
+        self.stats.add(p);
+        if folds {
+            self.stats.add_loop_point(p);
+        }
+        self.copies(p)
+    }
+
+    /// Takes the figures of the points after those seen so far (a batch's, gathered apart).
+    fn merge(&mut self, later: Stats) {
+        self.stats = std::mem::take(&mut self.stats).merge(later);
+    }
+
+    /// Writes `p` into the CSV, the servo's table and the display's copy.
+    fn copies(&mut self, p: &PathPoint) -> Result<(), PlanError> {
         if let Some(z) = self.slide(p)?
             && let Some(t) = self.fts_table.as_mut()
         {
@@ -426,10 +436,6 @@ impl<'a> Extras<'a> {
         }
         if let Some(d) = self.display.as_deref_mut() {
             d.push(p);
-        }
-        self.stats.add(p);
-        if folds {
-            self.stats.add_loop_point(p);
         }
         Ok(())
     }
@@ -442,5 +448,14 @@ impl<'a> Extras<'a> {
             t.finish()?;
         }
         Ok(self.stats)
+    }
+}
+
+/// The slide's share of `p`'s height in `z_slide` (the split path's), if the path is split.
+fn slide_of(z_slide: Option<&[f64]>, p: &PathPoint) -> Result<Option<f64>, PlanError> {
+    match z_slide.map(|z| z.get(p.index as usize)) {
+        None => Ok(None),
+        Some(Some(&z)) => Ok(Some(z)),
+        Some(None) => Err(PlanError::SplitLength(p.index)),
     }
 }

@@ -12,6 +12,7 @@ use crate::display::DisplayPath;
 use crate::nc::{Header, NcWriter};
 use crate::progress::{ProgressFn, Stage};
 use crate::report::Stats;
+use crate::tool::Batched;
 use serde::{Deserialize, Serialize};
 use std::io::Write;
 use std::ops::Range;
@@ -74,7 +75,9 @@ impl Planner {
     }
 
     /// Streams the points of `range` into the sinks: the header into the program when given
-    /// (the first slice), the end when the path ends in the range.
+    /// (the first slice), the end when the path ends in the range. Each batch's blocks and
+    /// figures are made on the worker that computes it ([`Planner::format_batch`]); this thread
+    /// writes them and the CSV, the servo's table and the display's copy in order.
     pub(super) fn walk(
         &self,
         range: Range<u64>,
@@ -99,22 +102,20 @@ impl Planner {
             sinks.display,
             sinks.z_slide,
         )?;
+        let z_slide = sinks.z_slide;
         let first = range.start;
-        let walked = self.path.for_each_pair_in(
-            first.saturating_sub(2)..range.end,
+        let walked = self.path.for_each_batch_in(
+            range,
             Stage::Path,
             progress,
-            |_, _| Ok(()),
-            &mut |p, folds, _| {
-                let z_slide = extras.slide(p)?;
-                if p.index < first {
-                    return Ok(nc.context(p, z_slide)?);
+            |batch, out: &mut FormattedBatch| self.format_batch(batch, z_slide, out),
+            &mut |batch, out: &FormattedBatch| {
+                let mut handed_on = batch.iter().filter(|b| b.handed_on);
+                if let Some(last) = handed_on.clone().last() {
+                    nc.append(&out.nc, last.point.z)?;
                 }
-                match z_slide {
-                    None => nc.point(p)?,
-                    Some(z) => nc.point_split(p, z)?,
-                }
-                extras.point(p, folds)
+                extras.merge(out.stats.clone());
+                handed_on.try_for_each(|b| extras.copies(&b.point))
             },
         )?;
         let stats = extras.finish()?;
@@ -126,4 +127,42 @@ impl Planner {
             ended: walked.ended,
         })
     }
+
+    /// The blocks of a batch's points handed on (after its context, taken as the writer of the
+    /// whole program would: [`NcWriter::context`]) and their figures.
+    fn format_batch(
+        &self,
+        batch: &[Batched],
+        z_slide: Option<&[f64]>,
+        out: &mut FormattedBatch,
+    ) -> Result<(), PlanError> {
+        out.nc.clear();
+        out.stats = Stats::default();
+        let spec = &self.job().output;
+        let mut nc = NcWriter::resume(&mut out.nc, spec, self.job().machine.spindle_rpm);
+        for b in batch {
+            let p = &b.point;
+            let slide = super::slide_of(z_slide, p)?;
+            if !b.handed_on {
+                nc.context(p, slide)?;
+                continue;
+            }
+            match slide {
+                None => nc.point(p)?,
+                Some(z) => nc.point_split(p, z)?,
+            }
+            out.stats.add(p);
+            if b.folds {
+                out.stats.add_loop_point(p);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A batch's program text and figures, made on a worker.
+#[derive(Default)]
+struct FormattedBatch {
+    nc: Vec<u8>,
+    stats: Stats,
 }

@@ -20,6 +20,6 @@ pub mod two_way;
 pub mod waviness;
 
 pub use one_way::{Contact, NoseCompensator};
-pub use tool_path::{Probe, ToolPath, Walked, spiral};
+pub use tool_path::{Batched, Probe, ToolPath, Walked, spiral};
 pub use two_way::{TwoWay, max_principal_curvature};
 pub use waviness::Waviness;

@@ -72,6 +72,38 @@ pub struct Contact {
     /// The contact lies at an end of the arc: the section is steeper there than β/2, and the
     /// tool's flank may cut.
     pub at_arc_end: bool,
+    /// sin a and cos a of the contact's nose angle (a warm start's rotation starts from them).
+    pub sin_cos: (f64, f64),
+}
+
+/// Where the contact search of the next point along a path starts ([`NoseCompensator::
+/// compensate_from`]): the contact angles of the last two points, extrapolated linearly, and
+/// the sine and cosine of the last one, from which the start's are found by rotation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WarmStart {
+    last: f64,
+    sin_cos: (f64, f64),
+    before: Option<f64>,
+}
+
+impl WarmStart {
+    /// The warm start after `contact`, the contact of the point after the one `previous` was
+    /// made from (`None`: the walk starts there).
+    pub fn after(previous: Option<WarmStart>, contact: &Contact) -> Self {
+        Self {
+            last: contact.angle,
+            sin_cos: contact.sin_cos,
+            before: previous.map(|w| w.last),
+        }
+    }
+
+    /// The angle to start from: `2·a₁ − a₂` from the last two contacts, or the last alone.
+    pub fn angle(&self) -> f64 {
+        match self.before {
+            Some(before) => 2.0 * self.last - before,
+            None => self.last,
+        }
+    }
 }
 
 /// One-way compensation for a given tool and part.
@@ -245,9 +277,10 @@ impl NoseCompensator {
 
     /// [`NoseCompensator::compensate`] with the surface's [`NoseCompensator::concavity`] given,
     /// and a warm start: where the concave shortcut applies, its Newton iteration starts from
-    /// the nose angle `start` (a neighbouring point's contact) instead of 0. The certificate is
-    /// the same either way (one maximum on the arc), so the contact found is the same to the
-    /// shortcut's tolerance; only the evaluations spent differ. Ignored by the whole-arc search.
+    /// the nose angle [`WarmStart::angle`] (extrapolated from the contacts of the points before)
+    /// instead of 0. The certificate is the same either way (one maximum on the arc), so the
+    /// contact found is the same to the shortcut's tolerance; only the evaluations spent differ.
+    /// Ignored by the whole-arc search.
     pub fn compensate_from(
         &self,
         surface: &dyn Surface,
@@ -255,7 +288,7 @@ impl NoseCompensator {
         rho_s: f64,
         c: f64,
         s: f64,
-        start: Option<f64>,
+        start: Option<WarmStart>,
     ) -> Result<Contact, UndefinedError> {
         let r = self.r;
         if r == 0.0 {
@@ -267,6 +300,7 @@ impl NoseCompensator {
                 rho: rho_s,
                 z,
                 at_arc_end: false,
+                sin_cos: (0.0, 1.0),
             });
         }
         let section = Section {
@@ -279,8 +313,8 @@ impl NoseCompensator {
         };
         let (lo, hi) = self.arc_range(rho_s);
         let best = if let Some(m) = concavity {
-            let kinks = self.kink_angles(surface, rho_s, c, s, lo, hi);
-            section.concave_peak(&kinks, lo, hi, m, start.unwrap_or(0.0))?
+            let kinks = || self.kink_angles(surface, rho_s, c, s, lo, hi);
+            section.concave_peak(&kinks, lo, hi, m, start)?
         } else {
             self.search(&section, lo, hi)?
         };
@@ -297,6 +331,7 @@ impl NoseCompensator {
             rho: rho_s + reach * best.sa,
             z: best.z,
             at_arc_end: at_arc_end && best.g.abs() > 1e-12 * r,
+            sin_cos: (best.sa, best.ca),
         })
     }
 
@@ -461,15 +496,20 @@ impl Section<'_> {
     /// series (the first term left out is below 10⁻²¹ there), to the last bit or two of libm's
     /// and without its call; farther, by [`f64::sin_cos`].
     fn at_near(&self, from: &Sample, a: f64) -> Result<Sample, UndefinedError> {
-        let d = a - from.a;
+        self.at_rotated(from.a, (from.sa, from.ca), a)
+    }
+
+    /// As [`Section::at_near`], from the angle `from` whose sine and cosine are `sin_cos`.
+    fn at_rotated(&self, from: f64, sin_cos: (f64, f64), a: f64) -> Result<Sample, UndefinedError> {
+        let d = a - from;
         if d.abs() > 1e-3 {
             return self.at(a);
         }
         let d2 = d * d;
         let sd = d * (1.0 - d2 / 6.0 * (1.0 - d2 / 20.0));
         let cd = 1.0 - d2 / 2.0 * (1.0 - d2 / 12.0 * (1.0 - d2 / 30.0));
-        let (sa, ca) = (from.sa * cd + from.ca * sd, from.ca * cd - from.sa * sd);
-        self.at_sin_cos(a, sa, ca)
+        let (fs, fc) = sin_cos;
+        self.at_sin_cos(a, fs * cd + fc * sd, fc * cd - fs * sd)
     }
 
     /// As [`Section::at`] with sin a and cos a given.
@@ -523,9 +563,10 @@ impl Section<'_> {
 
     /// The maximum of F over `[lo, hi]` where F is concave
     /// ([`crate::surface::SectionBounds::nose_height_concavity`]): F′ never rises, so the sign
-    /// of F′ anywhere says on which side the one maximum lies. Newton from `start` (0, or a
-    /// neighbour's contact; clamped to the arc) until a step would cross a slope kink
-    /// (`kinks`: the angles either side of each, ascending), where the kink's sides are probed
+    /// of F′ anywhere says on which side the one maximum lies. Newton from `start`'s angle (0
+    /// without one; clamped to the arc, its sine and cosine by rotation) until a step would cross a slope kink
+    /// (`kinks` gives the angles either side of each, ascending, asked for at the first step
+    /// only: a start that is already the answer needs none), where the kink's sides are probed
     /// instead, or the arc's end. With −F″ ≥ `m`, the maximum lies within |F′(x)|/m of a
     /// sample x and exceeds F(x) by at most F′(x)²/(2m): a sample x with |F′(x)|/m ≤ 10⁻¹⁰
     /// rad is the answer (its height then within 10⁻²⁰·m mm of the maximum, its contact within
@@ -533,14 +574,18 @@ impl Section<'_> {
     /// bracket.
     fn concave_peak(
         &self,
-        kinks: &[f64],
+        kinks: &dyn Fn() -> Vec<f64>,
         lo: f64,
         hi: f64,
         m: f64,
-        start: f64,
+        start: Option<WarmStart>,
     ) -> Result<Sample, UndefinedError> {
-        let mut x = self.at(start.clamp(lo, hi))?;
+        let mut x = match start {
+            Some(w) => self.at_rotated(w.last, w.sin_cos, w.angle().clamp(lo, hi))?,
+            None => self.at(0.0f64.clamp(lo, hi))?,
+        };
         let (mut left, mut right) = (None::<Sample>, None::<Sample>);
+        let mut kink_list = None;
         for _ in 0..100 {
             if x.g.abs() <= 1e-10 * m {
                 return Ok(x);
@@ -561,6 +606,7 @@ impl Section<'_> {
             if x.a == end {
                 return Ok(x);
             }
+            let kinks: &[f64] = kink_list.get_or_insert_with(kinks);
             let kink = if up {
                 kinks.iter().copied().find(|&k| k > x.a)
             } else {

@@ -11,6 +11,7 @@
 //! bits however the path is computed.
 
 use super::NoseCompensator;
+use super::one_way::WarmStart;
 use super::reach::{self, Reach};
 use crate::field::FieldError;
 use crate::job::{Compensation, Job, Sampling, StrategySpec};
@@ -189,32 +190,32 @@ impl ToolPath {
         })
     }
 
-    /// [`Self::path_point`] in a walk along the path: `warm` holds the previous point's contact
-    /// angle, dropped at the start of each [`WARM_RUN`], and takes this one's.
+    /// [`Self::path_point`] in a walk along the path: `warm` holds the start the contacts of
+    /// the points before give ([`WarmStart`]), dropped at the start of each [`WARM_RUN`], and
+    /// takes this one's.
     fn warm_point(
         &self,
         index: u64,
         sp: SpiralPoint,
-        warm: &mut Option<f64>,
+        warm: &mut Option<WarmStart>,
     ) -> Result<(PathPoint, bool), UndefinedError> {
         if index.is_multiple_of(WARM_RUN) {
             *warm = None;
         }
-        let point = self.path_point(index, sp, *warm)?;
-        *warm = Some(point.0.contact_angle);
-        Ok(point)
+        self.path_point(index, sp, warm)
     }
 
     /// The compensated path point of the `index`-th spiral point, and whether the two-way
     /// offset folds there (a loop; always false one-way); one-way, the contact search starts
-    /// from the nose angle `start` where it can ([`NoseCompensator::compensate_from`]).
+    /// from `warm` where it can ([`NoseCompensator::compensate_from`]), which then takes this
+    /// point's contact.
     /// Two-way, `rho` and `theta` are the nose centre's X and C
     /// ([`NoseCompensator::compensate_two_way`]).
     fn path_point(
         &self,
         index: u64,
         sp: SpiralPoint,
-        start: Option<f64>,
+        warm: &mut Option<WarmStart>,
     ) -> Result<(PathPoint, bool), UndefinedError> {
         let (s, c) = sp.theta.sin_cos();
         if self.job.strategy.compensation == Compensation::TwoWay {
@@ -240,8 +241,9 @@ impl ToolPath {
             sp.rho,
             c,
             s,
-            start,
+            *warm,
         )?;
+        *warm = Some(WarmStart::after(*warm, &contact));
         Ok((
             PathPoint {
                 index,
@@ -276,9 +278,9 @@ impl ToolPath {
                 let advance = a.rho - b.rho;
                 Ok(Probe {
                     points: [
-                        self.path_point(index, a, None)?.0,
-                        self.path_point(index + 1, b, None)?.0,
-                        self.path_point(index + 2, c, None)?.0,
+                        self.path_point(index, a, &mut None)?.0,
+                        self.path_point(index + 1, b, &mut None)?.0,
+                        self.path_point(index + 2, c, &mut None)?.0,
                     ],
                     per_mm: if advance > 0.0 { 1.0 / advance } else { 0.0 },
                 })
@@ -341,8 +343,46 @@ impl ToolPath {
         pair: impl Fn(Option<&PathPoint>, &PathPoint) -> Result<T, E> + Sync,
         visit: &mut dyn FnMut(&PathPoint, bool, &T) -> Result<(), E>,
     ) -> Result<Walked, E> {
-        // The predecessor of the first point, and the run it lies in, are computed first.
-        let begin = range.start.saturating_sub(1) / WARM_RUN * WARM_RUN;
+        self.for_each_batch_in(
+            range,
+            stage,
+            progress,
+            |batch, pairs: &mut Vec<T>| {
+                pairs.clear();
+                for (k, b) in batch.iter().enumerate().filter(|(_, b)| b.handed_on) {
+                    let previous = k.checked_sub(1).map(|j| &batch[j].point);
+                    pairs.push(pair(previous, &b.point)?);
+                }
+                Ok(())
+            },
+            &mut |batch, pairs| {
+                let handed_on = batch.iter().filter(|b| b.handed_on);
+                for (b, t) in handed_on.zip(pairs) {
+                    visit(&b.point, b.folds, t)?;
+                }
+                Ok(())
+            },
+        )
+    }
+
+    /// The walk under the others, a batch at a time: the points of `range` computed in batches
+    /// on every core, each batch also computing the points before its first one back to the
+    /// start of the run that holds the second point before it (its context: at least the two
+    /// points before the first one handed on, where there are any, computed as in the whole
+    /// walk). `work(batch, out)` runs on a worker beside the compensation, `visit(batch, out)`
+    /// on the calling thread in order; [`Batched::handed_on`] marks the points of `range`.
+    /// `progress` is called about every [`PROGRESS_EVERY`] points handed on and at the end, as
+    /// `stage` (`Break` cancels).
+    pub fn for_each_batch_in<B: Default + Send, E: From<PathError> + Send>(
+        &self,
+        range: std::ops::Range<u64>,
+        stage: Stage,
+        progress: &mut ProgressFn,
+        work: impl Fn(&[Batched], &mut B) -> Result<(), E> + Sync,
+        visit: &mut dyn FnMut(&[Batched], &B) -> Result<(), E>,
+    ) -> Result<Walked, E> {
+        let run_of = |index: u64| index.saturating_sub(2) / WARM_RUN * WARM_RUN;
+        let begin = run_of(range.start);
         let total = self
             .spiral
             .point_count_hint()
@@ -351,9 +391,8 @@ impl ToolPath {
         let mut done = 0u64;
         let mut spiral = self.spiral.points();
         // A batch's points with their indices and whether they are handed on: in every batch
-        // but the first, the first points are the last run of the batch before, compensated
-        // again (the last one is the predecessor of the next) and not handed on twice; in the
-        // first, those before the range.
+        // but the first, the first points are the context carried from the batch before,
+        // computed again and not handed on twice; in the first, those before the range.
         let mut next = begin;
         let mut ended = match usize::try_from(begin) {
             Ok(0) => false,
@@ -361,7 +400,7 @@ impl ToolPath {
             Err(_) => true,
         };
         let mut carried: Vec<(u64, SpiralPoint, bool)> = Vec::new();
-        pipeline::<(u64, SpiralPoint, bool), (PathPoint, bool, T), E>(
+        pipeline::<(u64, SpiralPoint, bool), (Vec<Batched>, B), E>(
             |input: &mut Vec<(u64, SpiralPoint, bool)>| {
                 input.clear();
                 let room = (BATCH as u64).min(range.end.saturating_sub(next)) as usize;
@@ -381,9 +420,7 @@ impl ToolPath {
                     input.clear();
                     return;
                 }
-                let run = input
-                    .last()
-                    .map_or(0, |&(index, _, _)| index / WARM_RUN * WARM_RUN);
+                let run = run_of(next);
                 carried.extend(
                     input
                         .iter()
@@ -391,30 +428,35 @@ impl ToolPath {
                         .map(|&(index, sp, _)| (index, sp, false)),
                 );
             },
-            |_, input, output: &mut Vec<(PathPoint, bool, T)>| {
-                output.clear();
-                let (mut previous, mut warm) = (None::<PathPoint>, None);
+            |_, input, slot: &mut Vec<(Vec<Batched>, B)>| {
+                // One output a batch, its buffers reused from batch to batch.
+                if slot.is_empty() {
+                    slot.push(Default::default());
+                }
+                let (batch, out) = &mut slot[0];
+                batch.clear();
+                let mut warm = None;
                 for &(index, sp, handed_on) in input {
-                    let (p, folds) = self
+                    let (point, folds) = self
                         .warm_point(index, sp, &mut warm)
                         .map_err(|e| E::from(e.into()))?;
-                    if handed_on {
-                        let t = pair(previous.as_ref(), &p)?;
-                        output.push((p, folds, t));
-                    }
-                    previous = Some(p);
+                    batch.push(Batched {
+                        point,
+                        folds,
+                        handed_on,
+                    });
                 }
-                Ok(())
+                work(batch, out)
             },
-            |output| {
-                for (p, folds, t) in output {
-                    visit(p, *folds, t)?;
-                    done += 1;
-                    if done.is_multiple_of(PROGRESS_EVERY)
-                        && progress(Progress { stage, done, total }).is_break()
-                    {
-                        return Err(PathError::Cancelled.into());
-                    }
+            |slot| {
+                let (batch, out) = &slot[0];
+                visit(batch, out)?;
+                let before = done;
+                done += batch.iter().filter(|b| b.handed_on).count() as u64;
+                if done / PROGRESS_EVERY > before / PROGRESS_EVERY
+                    && progress(Progress { stage, done, total }).is_break()
+                {
+                    return Err(PathError::Cancelled.into());
                 }
                 Ok(())
             },
@@ -429,4 +471,15 @@ impl ToolPath {
             ended,
         })
     }
+}
+
+/// A point of a batch of [`ToolPath::for_each_batch_in`].
+#[derive(Debug, Clone, Copy)]
+pub struct Batched {
+    /// The point.
+    pub point: PathPoint,
+    /// The two-way offset folds there.
+    pub folds: bool,
+    /// It lies in the walk's range and is handed on here (not context).
+    pub handed_on: bool,
 }

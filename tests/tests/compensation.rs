@@ -439,7 +439,8 @@ fn the_paper004_lens_array_path_touches_at_the_rims_to_the_picometre() {
 #[test]
 fn the_warm_started_path_is_the_cold_one_and_the_same_in_batches_as_in_a_walk() {
     // Where the surface proves the nose height concave, each point's Newton iteration starts
-    // from its predecessor's contact (runs of WARM_RUN points aligned on the index). Against
+    // from the line through its two predecessors' contacts (runs of WARM_RUN points aligned on
+    // the index). Against
     // the cold start of every point alone: the same height to 1e-14 mm and contact angle to
     // 1e-9 rad (the shortcut's own tolerance: |F′|/m ≤ 1e-10 rad). And the path computed in
     // batches on the workers (three batches, each recomputing the run it starts in), each
@@ -482,6 +483,27 @@ fn the_warm_started_path_is_the_cold_one_and_the_same_in_batches_as_in_a_walk() 
                 "{surface}: point {k}"
             );
         }
+        // Batch by batch over a slice: each batch's points after its context are the walk's,
+        // in order, and its context holds at least the two points before them, as in the walk.
+        let mut handed = Vec::new();
+        path.for_each_batch_in(
+            12_345..40_001,
+            Stage::Path,
+            &mut ignore,
+            |_, _: &mut ()| Ok::<_, spiralcam::path::PathError>(()),
+            &mut |batch, _| {
+                let first = batch.iter().position(|b| b.handed_on).unwrap();
+                assert!(first >= 2, "{surface}: {first} points of context");
+                for b in batch {
+                    assert_eq!(b.point, walk[b.point.index as usize], "{surface}");
+                }
+                assert!(batch[first..].iter().all(|b| b.handed_on));
+                handed.extend(batch[first..].iter().map(|b| b.point.index));
+                Ok(())
+            },
+        )
+        .unwrap();
+        assert_eq!(handed, (12_345..40_001).collect::<Vec<u64>>(), "{surface}");
         let (mut worst_z, mut worst_angle, mut warm) = (0.0f64, 0.0f64, 0);
         for p in &walk {
             let (s, c) = p.theta.sin_cos();

@@ -5,8 +5,10 @@
 //! computes it one point at a time, [`ToolPath::for_each_point`] in batches on every core,
 //! [`ToolPath::for_each_pair`] with a function of each point and its predecessor computed beside
 //! it (an analysis's per-segment work), [`ToolPath::for_each_pair_in`] the same over a slice of
-//! the indices (the page's workers each plan one, [`crate::plan::PlanSlice`]). Each point's
-//! contact search starts from its predecessor's contact within runs of [`WARM_RUN`] points
+//! the indices (the page's workers each plan one, [`crate::plan::PlanSlice`]),
+//! [`ToolPath::for_each_batch_in`] under both, a function of a whole batch (with the points
+//! before it as context) computed on the worker (the planner's NC text and figures). Each point's
+//! contact search starts from its predecessors' contacts within runs of [`WARM_RUN`] points
 //! aligned on the index (the warm start of [`crate::tool::one_way`]), so a point is the same
 //! bits however the path is computed.
 
@@ -24,8 +26,8 @@ use crate::surface::{Surface, UndefinedError};
 const BATCH: usize = 16_384;
 
 /// The path is compensated in runs of this many points, aligned on the index: the first point
-/// of a run starts its contact search cold, every other one from its predecessor's contact
-/// ([`NoseCompensator::compensate_from`]). A point's result thus depends on its index alone,
+/// of a run starts its contact search cold, every other one from its predecessors' contacts
+/// ([`NoseCompensator::compensate_from`], [`WarmStart`]). A point's result thus depends on its index alone,
 /// however the path is cut into batches, slices or threads, as long as each piece starts on a
 /// run boundary or recomputes the run it starts in. A divisor of the batch size.
 pub const WARM_RUN: u64 = 64;

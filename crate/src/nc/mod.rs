@@ -180,10 +180,10 @@ impl Conventions {
             value,
             at,
         };
-        let x = scaled(self.x_sign * rho, self.decimals_xz).ok_or(bad("X", rho))?;
-        let z = scaled(self.z_sign * z, self.decimals_xz).ok_or(bad("Z", z))?;
-        let mut c =
-            scaled(self.c_sign * theta.to_degrees(), self.decimals_c).ok_or(bad("C", theta))?;
+        let x = scaled(self.x_sign * rho, self.decimals_xz).ok_or_else(|| bad("X", rho))?;
+        let z = scaled(self.z_sign * z, self.decimals_xz).ok_or_else(|| bad("Z", z))?;
+        let mut c = scaled(self.c_sign * theta.to_degrees(), self.decimals_c)
+            .ok_or_else(|| bad("C", theta))?;
         if self.wrap_c {
             c = c.rem_euclid(360 * 10i64.pow(self.decimals_c));
         }

@@ -424,6 +424,11 @@ impl<'a> Extras<'a> {
         self.stats = std::mem::take(&mut self.stats).merge(later);
     }
 
+    /// Whether any of the CSV, the servo's table and the display's copy is wanted.
+    fn copies_wanted(&self) -> bool {
+        self.csv.is_some() || self.fts_table.is_some() || self.display.is_some()
+    }
+
     /// Writes `p` into the CSV, the servo's table and the display's copy.
     fn copies(&mut self, p: &PathPoint) -> Result<(), PlanError> {
         if let Some(z) = self.slide(p)?

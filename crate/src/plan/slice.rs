@@ -110,12 +110,16 @@ impl Planner {
             progress,
             |batch, out: &mut FormattedBatch| self.format_batch(batch, z_slide, out),
             &mut |batch, out: &FormattedBatch| {
-                let mut handed_on = batch.iter().filter(|b| b.handed_on);
-                if let Some(last) = handed_on.clone().last() {
+                // The context comes first in a batch, the points handed on after it.
+                let handed_on = &batch[batch.partition_point(|b| !b.handed_on)..];
+                if let Some(last) = handed_on.last() {
                     nc.append(&out.nc, last.point.z)?;
                 }
                 extras.merge(out.stats.clone());
-                handed_on.try_for_each(|b| extras.copies(&b.point))
+                if extras.copies_wanted() {
+                    handed_on.iter().try_for_each(|b| extras.copies(&b.point))?;
+                }
+                Ok(())
             },
         )?;
         let stats = extras.finish()?;

@@ -454,7 +454,8 @@ impl ToolPath {
                 let (batch, out) = &slot[0];
                 visit(batch, out)?;
                 let before = done;
-                done += batch.iter().filter(|b| b.handed_on).count() as u64;
+                // The context comes first in a batch, the points handed on after it.
+                done += (batch.len() - batch.partition_point(|b| !b.handed_on)) as u64;
                 if done / PROGRESS_EVERY > before / PROGRESS_EVERY
                     && progress(Progress { stage, done, total }).is_break()
                 {

@@ -52,43 +52,35 @@ pub fn scaled(v: f64, decimals: u32) -> Option<i64> {
     Some(s)
 }
 
-/// Appends `units · 10^−decimals` with exactly `decimals` digits after the point: its length
-/// is found first (from the digits' count, [`u64::checked_ilog10`]), then the text is written
-/// right to left in place (the decimals, the point, the integer part, the sign). The buffer
-/// grows by a fixed 24 bytes and is cut back, so no copy of a variable length (a library call)
-/// is made: this runs for every word of a program.
+/// Appends `units · 10^−decimals` with exactly `decimals` digits after the point: the text is
+/// built right to left in a stack buffer (the decimals, the point, the integer part, the sign)
+/// and appended in one copy.
 pub fn push_scaled(buf: &mut Vec<u8>, units: i64, decimals: u32) {
-    let mag = units.unsigned_abs();
-    let d = decimals as usize;
-    let digits = mag.checked_ilog10().map_or(1, |l| l as usize + 1);
-    let (sign, point) = (usize::from(units < 0), usize::from(d > 0));
-    let n = sign + digits.max(d + 1) + point;
-    let at = buf.len();
-    buf.extend_from_slice(&[0u8; 24]);
-    let out = &mut buf[at..at + n];
-    let mut i = n;
-    let mut rest = mag;
-    let mut fraction = d;
+    let mut tmp = [0u8; 24];
+    let mut i = tmp.len();
+    let mut mag = units.unsigned_abs();
+    let mut fraction = decimals as usize;
     while fraction >= 2 {
         i -= 2;
-        put_pair(out, i, rest % 100);
-        rest /= 100;
+        put_pair(&mut tmp, i, mag % 100);
+        mag /= 100;
         fraction -= 2;
     }
     if fraction == 1 {
         i -= 1;
-        out[i] = b'0' + (rest % 10) as u8;
-        rest /= 10;
+        tmp[i] = b'0' + (mag % 10) as u8;
+        mag /= 10;
     }
-    if d > 0 {
+    if decimals > 0 {
         i -= 1;
-        out[i] = b'.';
+        tmp[i] = b'.';
     }
-    i = put_digits(out, i, rest);
-    if sign == 1 {
-        out[i - 1] = b'-';
+    i = put_digits(&mut tmp, i, mag);
+    if units < 0 {
+        i -= 1;
+        tmp[i] = b'-';
     }
-    buf.truncate(at + n);
+    buf.extend_from_slice(&tmp[i..]);
 }
 
 /// Writes the two digits of `n` (< 100) at `tmp[i..i + 2]`.

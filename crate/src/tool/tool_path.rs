@@ -381,7 +381,7 @@ impl ToolPath {
         stage: Stage,
         progress: &mut ProgressFn,
         work: impl Fn(&[Batched], &mut B) -> Result<(), E> + Sync,
-        visit: &mut dyn FnMut(&[Batched], &B) -> Result<(), E>,
+        visit: &mut BatchVisit<'_, B, E>,
     ) -> Result<Walked, E> {
         let run_of = |index: u64| index.saturating_sub(2) / WARM_RUN * WARM_RUN;
         let begin = run_of(range.start);
@@ -475,6 +475,9 @@ impl ToolPath {
         })
     }
 }
+
+/// What [`ToolPath::for_each_batch_in`] calls on the calling thread with each batch, in order.
+pub type BatchVisit<'v, B, E> = dyn FnMut(&[Batched], &B) -> Result<(), E> + 'v;
 
 /// A point of a batch of [`ToolPath::for_each_batch_in`].
 #[derive(Debug, Clone, Copy)]

@@ -571,11 +571,11 @@ impl Section<'_> {
     /// without one; clamped to the arc, its sine and cosine by rotation) until a step would
     /// cross a slope kink (`kinks` gives the angles either side of each, ascending, asked for
     /// at the first step only: a start that is already the answer needs none), where the
-    /// kink's sides are probed instead, or the arc's end. With −F″ ≥ `m`, the maximum lies within |F′(x)|/m of a
-    /// sample x and exceeds F(x) by at most F′(x)²/(2m): a sample x with |F′(x)|/m ≤ 10⁻¹⁰
-    /// rad is the answer (its height then within 10⁻²⁰·m mm of the maximum, its contact within
-    /// 10⁻¹⁰·r). Otherwise, once the maximum is bracketed, [`Section::refine_from`] closes the
-    /// bracket.
+    /// kink's sides are probed instead, or the arc's end. With −F″ ≥ `m`, the maximum lies
+    /// within |F′(x)|/m of a sample x and exceeds F(x) by at most F′(x)²/(2m): a sample x with
+    /// |F′(x)|/m ≤ 10⁻¹⁰ rad is the answer (its height then within 10⁻²⁰·m mm of the maximum,
+    /// its contact within 10⁻¹⁰·r). Otherwise, once the maximum is bracketed,
+    /// [`Section::refine_from`] closes the bracket.
     fn concave_peak(
         &self,
         kinks: &dyn Fn() -> Vec<f64>,

@@ -27,9 +27,9 @@ const BATCH: usize = 16_384;
 
 /// The path is compensated in runs of this many points, aligned on the index: the first point
 /// of a run starts its contact search cold, every other one from its predecessors' contacts
-/// ([`NoseCompensator::compensate_from`], [`WarmStart`]). A point's result thus depends on its index alone,
-/// however the path is cut into batches, slices or threads, as long as each piece starts on a
-/// run boundary or recomputes the run it starts in. A divisor of the batch size.
+/// ([`NoseCompensator::compensate_from`], [`WarmStart`]). A point's result thus depends on its
+/// index alone, however the path is cut into batches, slices or threads, as long as each piece
+/// starts on a run boundary or recomputes the run it starts in. A divisor of the batch size.
 pub const WARM_RUN: u64 = 64;
 
 /// What a walk over a slice of the path saw ([`ToolPath::for_each_pair_in`]).

@@ -28,6 +28,18 @@
 //! `dz*/ds = ρ_c·Δθ·f_v + tan a·Δρ`, `d²z*/ds² = ρ_c²Δθ²·H_vv − ρ_c·Δθ²·f_u − Δρ²/(r·cos³a)`.
 //! All of it comes from one surface evaluation at the contact.
 //!
+//! **Contacts on a ridge.** Where the contact sits on a slope kink of the section (a concave
+//! lens array's rim: F′ ≠ 0 at the maximum, the surface's radial slope falling through tan a
+//! across the contact), the contact follows the ridge, not the envelope condition: the ridge is
+//! where two smooth pieces meet, so it runs across the jump `Δ∇f` of the surface gradient
+//! (the other side's, read 10⁻¹¹·(1 + r) mm beyond the contact, less the contact's), and its
+//! crossing with the section at θ moves by `ρ_c′ = −ρ_c·Δθ·Δf_v/Δf_u`. Then
+//! `dz*/ds = f_u·ρ_c′ + ρ_c·Δθ·f_v − tan a·(ρ_c′ − Δρ)` (the sag along the ridge plus the arc's
+//! height over it; the same from either side of the kink, and the envelope theorem's where
+//! tan a = f_u); the second derivative is not formed. The envelope theorem's slope there is
+//! wrong at the order of the slope itself, which sent the refinement bisecting on wrong signs
+//! (20–30 steps) and could miss an extreme by nanometres.
+//!
 //! **Extremes.** A segment can have a negative and a positive extreme (an inflection of the
 //! surface under it), and on a wavy surface several of each. e, e′ and e″ are sampled at the ends
 //! (from the path points themselves) and at `n − 1` interior points, `n ≥ 4` intervals, at least
@@ -35,14 +47,20 @@
 //! ([`crate::surface::Surface::feature_length_mm`]) along the contact's path, at most
 //! [`MAX_INTERVALS`]. Every interval where e′ changes sign brackets a local extreme, refined by
 //! a safeguarded Newton iteration on `e′(s) = 0` (NR's `rtsafe`): the Newton step
-//! `s − e′/e″` is taken when it stays inside the bracket, has the right curvature and at least
-//! halves the step before last; otherwise the bracket is bisected, so the bracket shrinks at
+//! `s − e′/e″` (where e″ is not formed, on a ridge, the secant of e′ across the bracket) is
+//! taken when it stays inside the bracket, has the right curvature and at least halves the
+//! step before last; otherwise the bracket is bisected, so the bracket shrinks at
 //! least geometrically and the loop ends within [`MAX_ITERATIONS`] steps whatever the surface
 //! (kinks included: bisection then converges on the kink, where e′ jumps through 0). It stops
 //! when the height still to gain is below [`HEIGHT_TOLERANCE`] (1e-13 mm): by the bracket
 //! (`width·max|e′(ends)|`, exact when e′ is monotone in it) or by the Newton model
 //! (`e′²/(2|e″|)`, quadratic convergence). The extremes of the segment are the most negative and
-//! most positive e over every sample and refined point. Accuracy: each refined extreme is within
+//! most positive e over every sample and refined point. Each interior sample's contact search
+//! starts from the angle interpolated between the contacts of the segment's ends
+//! ([`crate::tool::WarmStart::toward`]); where the surface proves the nose height concave the
+//! contact found does not depend on the start (to 10⁻¹⁰ rad), and the ridge's slope does not
+//! depend on the side of the kink the contact is reported on. A segment along which the tool
+//! stands still has no error. Accuracy: each refined extreme is within
 //! 1e-13 mm of the local extreme of the computed e(s), whose own rounding (that of the
 //! compensated height, ~1e-13 mm) dominates. With the cubic-like e of a short segment on a smooth
 //! surface (`e = s(1 − s)(α + βs)`, extremes ≥ 1/√3 apart in s) four intervals can hold at most
@@ -60,6 +78,7 @@ use crate::raster::Raster;
 use crate::surface::{Local, Surface, UndefinedError};
 use crate::tool::NoseCompensator;
 use crate::tool::ToolPath;
+use crate::tool::WarmStart;
 use serde::Serialize;
 
 /// Height, mm, below which the refinement of an extreme stops (see the module docs).
@@ -76,6 +95,12 @@ const INTERVALS_PER_FEATURE: f64 = 8.0;
 const MAX_ANGLE_STEP: f64 = std::f64::consts::PI / 12.0;
 /// Tolerance, radians, of "the contact sits at this end of the arc".
 const AT_END: f64 = 1e-12;
+/// Least |f_u − tan a| at a free contact, mm/mm, that marks it as pinned on a slope kink
+/// (at a smooth maximum it is zero to the compensation's 10⁻¹⁰ rad).
+const RIDGE_SLOPE: f64 = 1e-7;
+/// How far beyond a contact pinned on a slope kink the other side's gradient is read, mm per
+/// (1 + r/mm): past the kink, which the compensation places within 2·10⁻¹² rad of the nose.
+const RIDGE_STEP: f64 = 1e-11;
 
 /// The error at one point of a segment and its derivatives along it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -157,6 +182,8 @@ struct Jet {
     rho_c: f64,
     /// Nose angle of the contact.
     angle: f64,
+    /// Its sine and cosine.
+    sin_cos: (f64, f64),
     z_tip: f64,
     local: Local,
     regime: Regime,
@@ -171,6 +198,10 @@ enum Regime {
     ArcEnd,
     /// On the part edge, where the arc is cut: ρ_c = ±R is fixed.
     PartEdge,
+    /// On a slope kink of the section (a lenslet rim), where F′ ≠ 0: the contact follows the
+    /// ridge. The jump of the surface gradient across it (the other side's less the contact's),
+    /// radial and tangential components, mm/mm.
+    Ridge { jump_u: f64, jump_v: f64 },
 }
 
 /// The surface and the nose of a plan.
@@ -229,31 +260,68 @@ impl<'a> Context<'a> {
         let (s, c) = p.theta.sin_cos();
         let [x, y, _] = p.contact;
         let local = self.surface.local(x, y)?;
-        Ok(Jet {
+        self.on_ridge(Jet {
             c,
             s,
             rho_c: x * c + y * s,
             angle: p.contact_angle,
+            sin_cos: p.contact_angle.sin_cos(),
             z_tip: p.z,
             local,
             regime: self.regime(p.rho, p.contact_angle),
         })
     }
 
-    /// The jet at tool position (ρ, θ), compensated afresh (cold: at a lenslet rim the side of
-    /// the kink the contact is reported on sets the jet's slope, so it must not depend on where
-    /// the search started).
-    fn jet_at(&self, rho: f64, theta: f64) -> Result<Jet, UndefinedError> {
+    /// `j`, its regime [`Regime::Ridge`] where a free contact has F′ = r·cos a·(f_u − tan a)
+    /// away from 0 and the surface's radial slope across the contact falls through tan a (a
+    /// maximum of F at a slope kink); the other side is read [`RIDGE_STEP`] beyond the contact
+    /// in the direction F rises.
+    fn on_ridge(&self, j: Jet) -> Result<Jet, UndefinedError> {
+        let r = self.nose.nose_radius();
+        if j.regime != Regime::Free || r == 0.0 || self.nose.waviness().is_some() {
+            return Ok(j);
+        }
+        let (sa, ca) = j.sin_cos;
+        let gradient = |l: &Local| (l.zx * j.c + l.zy * j.s, -l.zx * j.s + l.zy * j.c);
+        let (f_u, f_v) = gradient(&j.local);
+        let rises = f_u - sa / ca;
+        if rises.abs() <= RIDGE_SLOPE {
+            return Ok(j);
+        }
+        let rho = j.rho_c + rises.signum() * RIDGE_STEP * (1.0 + r);
+        let (o_u, o_v) = gradient(&self.surface.local(rho * j.c, rho * j.s)?);
+        if (o_u - sa / ca) * rises >= 0.0 {
+            return Ok(j);
+        }
+        Ok(Jet {
+            regime: Regime::Ridge {
+                jump_u: o_u - f_u,
+                jump_v: o_v - f_v,
+            },
+            ..j
+        })
+    }
+
+    /// The jet at tool position (ρ, θ), compensated afresh, the contact search starting from
+    /// `start` (from a = 0 without one; where the surface proves the nose height concave the
+    /// contact does not depend on it: [`NoseCompensator::compensate_from`]).
+    fn jet_at(
+        &self,
+        rho: f64,
+        theta: f64,
+        start: Option<WarmStart>,
+    ) -> Result<Jet, UndefinedError> {
         let (s, c) = theta.sin_cos();
         let contact = self
             .nose
-            .compensate_from(self.surface, self.concavity, rho, c, s, None)?;
+            .compensate_from(self.surface, self.concavity, rho, c, s, start)?;
         let local = self.surface.local(contact.rho * c, contact.rho * s)?;
-        Ok(Jet {
+        self.on_ridge(Jet {
             c,
             s,
             rho_c: contact.rho,
             angle: contact.angle,
+            sin_cos: contact.sin_cos,
             z_tip: contact.z_tip,
             local,
             regime: self.regime(rho, contact.angle),
@@ -272,8 +340,14 @@ impl<'a> Context<'a> {
         let rc = j.rho_c;
         let r = self.nose.nose_radius();
         match j.regime {
+            Regime::Ridge { jump_u, jump_v } => {
+                let (sa, ca) = j.sin_cos;
+                let drho_c = -rc * dtheta * jump_v / jump_u;
+                let d1 = f_u * drho_c + rc * dtheta * f_v - sa / ca * (drho_c - drho);
+                (d1, f64::NAN)
+            }
             Regime::PartEdge => {
-                let (sa, ca) = j.angle.sin_cos();
+                let (sa, ca) = j.sin_cos;
                 let d1 = rc * dtheta * f_v + sa / ca * drho;
                 let d2 = rc * rc * dtheta * dtheta * h_vv
                     - rc * dtheta * dtheta * f_u
@@ -290,7 +364,7 @@ impl<'a> Context<'a> {
                 if j.regime == Regime::ArcEnd || r == 0.0 {
                     return (d1, f_ss);
                 }
-                let (sa, ca) = j.angle.sin_cos();
+                let (sa, ca) = j.sin_cos;
                 let f_aa = r * r * ca * ca * h_uu - r * sa * f_u - r * ca;
                 let f_sa = r * ca * (drho * h_uu + rc * dtheta * h_uv + dtheta * f_v);
                 let d2 = if f_aa < 0.0 {
@@ -313,6 +387,8 @@ struct Segment<'c, 'a> {
     drho: f64,
     dtheta: f64,
     dz: f64,
+    /// The jets of the two ends.
+    ends: [Jet; 2],
 }
 
 /// A sample of e along a segment, with the sign σ applied when refining.
@@ -343,10 +419,13 @@ impl Segment<'_, '_> {
         }
     }
 
-    /// e and its derivatives at an interior s.
+    /// e and its derivatives at an interior s, the contact search starting from the angle
+    /// interpolated between the ends' contacts.
     fn eval(&self, s: f64) -> Result<Node, UndefinedError> {
         let (rho, theta) = (self.rho(s), self.theta(s));
-        let j = self.ctx.jet_at(rho, theta)?;
+        let [a, b] = &self.ends;
+        let start = WarmStart::toward(a.angle, a.sin_cos, a.angle + s * (b.angle - a.angle));
+        let j = self.ctx.jet_at(rho, theta, Some(start))?;
         let e = self.z0 + s * self.dz - j.z_tip;
         let n = self.node(s, e, &j);
         if !(n.e.is_finite() && n.d1.is_finite()) {
@@ -381,10 +460,19 @@ impl Segment<'_, '_> {
         }
     }
 
-    /// The extremes, given the jets of the two ends.
-    fn errors(&self, ja: &Jet, jb: &Jet) -> Result<SegmentError, UndefinedError> {
+    /// The extremes.
+    fn errors(&self) -> Result<SegmentError, UndefinedError> {
         let n = self.intervals();
+        let [ja, jb] = &self.ends;
         let first = self.node(0.0, 0.0, ja);
+        if self.drho == 0.0 && self.dtheta == 0.0 {
+            // The tool stands still: z* is constant, so e is linear and zero at both ends.
+            let none = self.extreme(&first);
+            return Ok(SegmentError {
+                overcut: none,
+                undercut: none,
+            });
+        }
         let mut lowest = first;
         let mut highest = first;
         let mut prev = first;
@@ -441,8 +529,11 @@ impl Segment<'_, '_> {
             if width <= 4.0 * f64::EPSILON || width * lo.d1.max(-hi.d1) <= HEIGHT_TOLERANCE {
                 break;
             }
+            // Newton where e″ is known, else the secant of e′ across the bracket.
             let newton = if x.d2 < 0.0 {
                 x.s - x.d1 / x.d2
+            } else if !x.d2.is_finite() {
+                lo.s + lo.d1 * (width / (lo.d1 - hi.d1))
             } else {
                 f64::NAN
             };
@@ -482,10 +573,12 @@ impl Segment<'_, '_> {
     }
 }
 
+/// The segment from `a` to `b`, whose jets are `ends`.
 fn segment<'c, 'a>(
     ctx: &'c Context<'a>,
     a: &PathPoint,
     b: &PathPoint,
+    ends: [Jet; 2],
 ) -> Result<Segment<'c, 'a>, UndefinedError> {
     for p in [a, b] {
         if !(p.rho.is_finite() && p.theta.is_finite() && p.z.is_finite()) {
@@ -500,6 +593,7 @@ fn segment<'c, 'a>(
         drho: b.rho - a.rho,
         dtheta: b.theta - a.theta,
         dz: b.z - a.z,
+        ends,
     };
     if !(seg.drho.is_finite() && seg.dtheta.is_finite() && seg.dz.is_finite()) {
         return Err(not_finite(b.rho, b.theta, "the step between path points"));
@@ -515,9 +609,8 @@ pub fn segment_error(
     b: &PathPoint,
 ) -> Result<SegmentError, UndefinedError> {
     let ctx = Context::new(tool_path);
-    let seg = segment(&ctx, a, b)?;
-    let (ja, jb) = (ctx.jet_of_point(a)?, ctx.jet_of_point(b)?);
-    seg.errors(&ja, &jb)
+    let ends = [ctx.jet_of_point(a)?, ctx.jet_of_point(b)?];
+    segment(&ctx, a, b, ends)?.errors()
 }
 
 /// The error of the segment from `a` to `b` ([`segment_error`]); for the path's first point
@@ -543,11 +636,11 @@ pub fn error_at(
     s: f64,
 ) -> Result<ErrorSample, UndefinedError> {
     let ctx = Context::new(tool_path);
-    let seg = segment(&ctx, a, b)?;
+    let seg = segment(&ctx, a, b, [ctx.jet_of_point(a)?, ctx.jet_of_point(b)?])?;
     let n = if s == 0.0 {
-        seg.node(0.0, 0.0, &ctx.jet_of_point(a)?)
+        seg.node(0.0, 0.0, &seg.ends[0])
     } else if s == 1.0 {
-        seg.node(1.0, 0.0, &ctx.jet_of_point(b)?)
+        seg.node(1.0, 0.0, &seg.ends[1])
     } else if s.is_finite() {
         seg.eval(s)?
     } else {
@@ -591,7 +684,7 @@ impl LinearizationCheck {
         let ctx = Context::new(tool_path);
         let jet = ctx.jet_of_point(p)?;
         if let Some((a, ja)) = &self.prev {
-            let err = segment(&ctx, a, p)?.errors(ja, &jet)?;
+            let err = segment(&ctx, a, p, [*ja, jet])?.errors()?;
             self.take(&err);
         }
         self.prev = Some((*p, jet));
@@ -681,8 +774,9 @@ mod tests {
     }
 
     fn seg<'c, 'a>(ctx: &'c Context<'a>, a: (f64, f64), b: (f64, f64)) -> Segment<'c, 'a> {
-        let za = ctx.jet_at(a.0, a.1).unwrap().z_tip;
-        let zb = ctx.jet_at(b.0, b.1).unwrap().z_tip;
+        let ja = ctx.jet_at(a.0, a.1, None).unwrap();
+        let jb = ctx.jet_at(b.0, b.1, None).unwrap();
+        let (za, zb) = (ja.z_tip, jb.z_tip);
         Segment {
             ctx,
             rho0: a.0,
@@ -691,6 +785,7 @@ mod tests {
             drho: b.0 - a.0,
             dtheta: b.1 - a.1,
             dz: zb - za,
+            ends: [ja, jb],
         }
     }
 
@@ -702,10 +797,10 @@ mod tests {
         // 1e-10 mm here); those of a free contact would not.
         let p = planner(r#"{"type":"asphere","radius_mm":20}"#, 3.0, 0.5);
         let ctx = Context::new(&p);
-        let j = ctx.jet_at(3.01, 0.2).unwrap();
+        let j = ctx.jet_at(3.01, 0.2, None).unwrap();
         assert_eq!(j.regime, Regime::PartEdge);
         assert!((j.rho_c - 3.0).abs() < 1e-12);
-        assert_eq!(ctx.jet_at(2.0, 0.2).unwrap().regime, Regime::Free);
+        assert_eq!(ctx.jet_at(2.0, 0.2, None).unwrap().regime, Regime::Free);
         let segment = seg(&ctx, (3.03, 0.1), (2.99, 0.5));
         let s = 0.4;
         let (h, x) = (1e-5, segment.eval(s).unwrap());
@@ -714,7 +809,7 @@ mod tests {
         assert!((x.d2 - (xp.d1 - xm.d1) / (2.0 * h)).abs() < 1e-8 * (1.0 + x.d2.abs()));
         let free = Jet {
             regime: Regime::Free,
-            ..ctx.jet_at(segment.rho(s), segment.theta(s)).unwrap()
+            ..ctx.jet_at(segment.rho(s), segment.theta(s), None).unwrap()
         };
         let (z1, _) = ctx.z_derivatives(&free, segment.drho, segment.dtheta);
         assert!((segment.dz - z1 - x.d1).abs() > 1e-4);

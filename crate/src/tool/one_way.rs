@@ -80,33 +80,43 @@ pub struct Contact {
     pub sin_cos: (f64, f64),
 }
 
-/// Where the contact search of the next point along a path starts ([`NoseCompensator::
-/// compensate_from`]): the contact angles of the last two points, extrapolated linearly, and
-/// the sine and cosine of the last one, from which the start's are found by rotation.
+/// Where the contact search of a point starts ([`NoseCompensator::compensate_from`]): an angle,
+/// and a nearby contact angle whose sine and cosine are known, from which the start's are found
+/// by rotation. Along a path, the contact angles of the last two points extrapolated linearly
+/// ([`WarmStart::after`]); between two points, an angle between their contacts
+/// ([`WarmStart::toward`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WarmStart {
     last: f64,
     sin_cos: (f64, f64),
-    before: Option<f64>,
+    angle: f64,
 }
 
 impl WarmStart {
     /// The warm start after `contact`, the contact of the point after the one `previous` was
-    /// made from (`None`: the walk starts there).
+    /// made from (`None`: the walk starts there): `2·a₁ − a₂` from the last two contacts, or
+    /// the last alone.
     pub fn after(previous: Option<WarmStart>, contact: &Contact) -> Self {
+        let last = contact.angle;
         Self {
-            last: contact.angle,
+            last,
             sin_cos: contact.sin_cos,
-            before: previous.map(|w| w.last),
+            angle: previous.map_or(last, |w| 2.0 * last - w.last),
         }
     }
 
-    /// The angle to start from: `2·a₁ − a₂` from the last two contacts, or the last alone.
-    pub fn angle(&self) -> f64 {
-        match self.before {
-            Some(before) => 2.0 * self.last - before,
-            None => self.last,
+    /// A start at `angle`, near the contact angle `from` whose sine and cosine are `sin_cos`.
+    pub fn toward(from: f64, sin_cos: (f64, f64), angle: f64) -> Self {
+        Self {
+            last: from,
+            sin_cos,
+            angle,
         }
+    }
+
+    /// The angle to start from.
+    pub fn angle(&self) -> f64 {
+        self.angle
     }
 }
 

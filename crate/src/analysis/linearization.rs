@@ -312,10 +312,9 @@ impl<'a> Context<'a> {
         start: Option<WarmStart>,
     ) -> Result<Jet, UndefinedError> {
         let (s, c) = theta.sin_cos();
-        let contact = self
-            .nose
-            .compensate_from(self.surface, self.concavity, rho, c, s, start)?;
-        let local = self.surface.local(contact.rho * c, contact.rho * s)?;
+        let (contact, local) =
+            self.nose
+                .compensate_with_local(self.surface, self.concavity, rho, c, s, start)?;
         self.on_ridge(Jet {
             c,
             s,

@@ -58,7 +58,7 @@
 use super::waviness::Waviness;
 use crate::field::{FieldError, in_range, non_negative};
 use crate::job::ToolSpec;
-use crate::surface::{Line, Surface, UndefinedError};
+use crate::surface::{Line, Local, Surface, UndefinedError};
 
 /// Where the nose touches the surface for one spiral point.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -304,19 +304,56 @@ impl NoseCompensator {
         s: f64,
         start: Option<WarmStart>,
     ) -> Result<Contact, UndefinedError> {
-        let r = self.r;
-        if r == 0.0 {
+        if self.r == 0.0 {
             let z = surface.sag(rho_s * c, rho_s * s)?;
-            return Ok(Contact {
-                z_center: z,
-                z_tip: z,
-                angle: 0.0,
-                rho: rho_s,
-                z,
-                at_arc_end: false,
-                sin_cos: (0.0, 1.0),
-            });
+            return Ok(Self::sharp(rho_s, z));
         }
+        let (contact, _) = self.round(surface, concavity, rho_s, c, s, start)?;
+        Ok(contact)
+    }
+
+    /// [`NoseCompensator::compensate_from`] with the surface's jet at the contact point (from
+    /// the search's own evaluation there).
+    pub fn compensate_with_local(
+        &self,
+        surface: &dyn Surface,
+        concavity: Option<f64>,
+        rho_s: f64,
+        c: f64,
+        s: f64,
+        start: Option<WarmStart>,
+    ) -> Result<(Contact, Local), UndefinedError> {
+        if self.r == 0.0 {
+            let z = surface.sag(rho_s * c, rho_s * s)?;
+            return Ok((Self::sharp(rho_s, z), surface.local(rho_s * c, rho_s * s)?));
+        }
+        self.round(surface, concavity, rho_s, c, s, start)
+    }
+
+    /// The contact of a sharp tool over ρ_s, where the sag is `z`.
+    fn sharp(rho_s: f64, z: f64) -> Contact {
+        Contact {
+            z_center: z,
+            z_tip: z,
+            angle: 0.0,
+            rho: rho_s,
+            z,
+            at_arc_end: false,
+            sin_cos: (0.0, 1.0),
+        }
+    }
+
+    /// The contact of a round nose (r > 0) and the surface's jet there.
+    fn round(
+        &self,
+        surface: &dyn Surface,
+        concavity: Option<f64>,
+        rho_s: f64,
+        c: f64,
+        s: f64,
+        start: Option<WarmStart>,
+    ) -> Result<(Contact, Local), UndefinedError> {
+        let r = self.r;
         let section = Section {
             surface,
             rho_s,
@@ -338,15 +375,16 @@ impl NoseCompensator {
             None => (r, r),
             Some(_) => (self.tip_offset(), self.edge_radius(best.a)),
         };
-        Ok(Contact {
+        let contact = Contact {
             z_center: best.f,
             z_tip: best.f - tip,
             angle: best.a,
             rho: rho_s + reach * best.sa,
-            z: best.z,
+            z: best.local.z,
             at_arc_end: at_arc_end && best.g.abs() > 1e-12 * r,
             sin_cos: (best.sa, best.ca),
-        })
+        };
+        Ok((contact, best.local))
     }
 
     /// The largest F over `[lo, hi]` by the sampled search of the whole arc (module docs).
@@ -496,7 +534,8 @@ struct Sample {
     f: f64,
     g: f64,
     gg: f64,
-    z: f64,
+    /// The surface's jet at the arc point.
+    local: Local,
 }
 
 impl Section<'_> {
@@ -533,10 +572,8 @@ impl Section<'_> {
         }
         let r = self.r;
         let rho = self.rho_s + r * sa;
-        let l = self
-            .surface
-            .local(rho * self.c, rho * self.s)?
-            .radial(self.c, self.s);
+        let local = self.surface.local(rho * self.c, rho * self.s)?;
+        let l = local.radial(self.c, self.s);
         Ok(Sample {
             a,
             sa,
@@ -544,7 +581,7 @@ impl Section<'_> {
             f: l.z + r * ca,
             g: r * ca * l.slope - r * sa,
             gg: r * r * ca * ca * l.curvature_term - r * sa * l.slope - r * ca,
-            z: l.z,
+            local,
         })
     }
 
@@ -560,10 +597,8 @@ impl Section<'_> {
         let (u1, u2) = (r1 * sa + rr * ca, r2 * sa + 2.0 * r1 * ca - rr * sa);
         let (v1, v2) = (r1 * ca - rr * sa, r2 * ca - 2.0 * r1 * sa - rr * ca);
         let rho = self.rho_s + rr * sa;
-        let l = self
-            .surface
-            .local(rho * self.c, rho * self.s)?
-            .radial(self.c, self.s);
+        let local = self.surface.local(rho * self.c, rho * self.s)?;
+        let l = local.radial(self.c, self.s);
         Ok(Sample {
             a,
             sa,
@@ -571,7 +606,7 @@ impl Section<'_> {
             f: l.z + rr * ca,
             g: l.slope * u1 + v1,
             gg: l.curvature_term * u1 * u1 + l.slope * u2 + v2,
-            z: l.z,
+            local,
         })
     }
 
@@ -739,6 +774,31 @@ mod tests {
                 c.rho,
                 rho * big / (big - r)
             );
+        }
+    }
+
+    #[test]
+    fn the_jet_at_the_contact_is_the_surfaces_there() {
+        // compensate_with_local hands back the search's own evaluation at the contact: the
+        // contact of compensate_from and the jet of Surface::local at it, to the bit, for the
+        // concave shortcut, the whole-arc search and a sharp tool.
+        use crate::surface::{LensArray, LensArraySpec, PartDisc};
+        let array = LensArray::new(&LensArraySpec::paper004(), PartDisc::centred(5.0)).unwrap();
+        for r in [0.0, 0.5] {
+            let comp = NoseCompensator::new(&tool(r), array.feature_length_mm(), 5.0).unwrap();
+            for concavity in [comp.concavity(&array), None] {
+                for k in 0..200 {
+                    let (rho, theta) = (4.9 * k as f64 / 200.0, 0.37 * k as f64);
+                    let (s, c) = theta.sin_cos();
+                    let found = comp.compensate_from(&array, concavity, rho, c, s, None);
+                    let (contact, local) = comp
+                        .compensate_with_local(&array, concavity, rho, c, s, None)
+                        .unwrap();
+                    assert_eq!(found.unwrap(), contact);
+                    let there = array.local(contact.rho * c, contact.rho * s).unwrap();
+                    assert_eq!(local, there, "r {r} ρ {rho} θ {theta}");
+                }
+            }
         }
     }
 

@@ -28,6 +28,10 @@
 //! - Derivatives: de/ds and d²e/ds² from the envelope theorem against central differences of e
 //!   and of de/ds; the envelope theorem itself (∂z*/∂ρ_s = f_u and ∂z*/∂θ = ρ_c·f_v at the
 //!   contact) against central differences of the compensated height.
+//! - Rims: on paper 004's concave lens array, where the contact rides a rim (F′ ≠ 0 at the
+//!   maximum), de/ds against Richardson-extrapolated central differences of e (the envelope
+//!   theorem's slope is checked to be wrong there), and the extremes of segments over the rims
+//!   against the dense brute force.
 //! - Order: doubling the points per revolution divides the largest error by 4 (second order).
 //! - The path check: `analyse` agrees with `segment_error` over every segment, its PV is the sum,
 //!   the map holds the extremes, the JSON has no map; bad input gives errors, not panics or NaN.

@@ -172,6 +172,14 @@ fn planned_paths_touch_without_cutting() {
         3.0,
     );
     assert!(check_planned_path(&cone, &apex, 2000) > 200);
+    // A cone whose apex is a ridge (β1 < 0): the section bounds hold, so the contact is found
+    // by the concave shortcut, the apex probed on either side.
+    let ridge = small_job(
+        "odd-ridge",
+        r#"{"type":"odd_asphere","radius_mm":60,"coefficients":[-2e-3,0,1e-4]}"#,
+        3.0,
+    );
+    assert!(check_planned_path(&ridge, &apex, 2000) > 200);
 }
 
 #[test]

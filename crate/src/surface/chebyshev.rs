@@ -18,7 +18,7 @@
 //! Derivatives by the recurrences `Tₙ₊₁′ = 2Tₙ + 2t·Tₙ′ − Tₙ₋₁′`, `Tₙ₊₁″ = 4Tₙ′ + 2t·Tₙ″ − Tₙ₋₁″`,
 //! scaled by 1/X₀ and 1/Y₀.
 
-use super::{Asphere, AsphereSpec, Local, PartDisc, Surface, UndefinedError};
+use super::{Asphere, AsphereSpec, Local, PartDisc, SectionBounds, Surface, UndefinedError};
 use crate::field::{FieldError, finite, positive};
 use serde::{Deserialize, Serialize};
 
@@ -183,6 +183,36 @@ impl Surface for Chebyshev {
             .min(self.base.feature_length_mm())
     }
 
+    /// Where the disc lies inside the half-widths (R ≤ min(X₀, Y₀)), the base's bounds plus
+    /// each term's along the direction (c, s): with |Tₙ| ≤ 1, |Tₙ′| ≤ n² and
+    /// |Tₙ″| ≤ n²(n² − 1)/3 on [−1, 1] (the Markov brothers' inequalities, equal at ±1),
+    /// `|d/dt Tᵢ(tc/X₀)·Tⱼ(ts/Y₀)| ≤ i²/X₀ + j²/Y₀` and
+    /// `|d²/dt²| ≤ i²(i² − 1)/(3X₀²) + i²j²/(X₀Y₀) + j²(j² − 1)/(3Y₀²)` (|c·s| ≤ ½). Beyond the
+    /// half-widths the polynomials grow unbounded: none.
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        let r = radius_mm.abs();
+        if r > self.hx.min(self.hy) {
+            return None;
+        }
+        let b = self.base.section_bounds(r)?;
+        let (hx, hy) = (self.hx, self.hy);
+        let (mut slope, mut curvature) = (0.0, 0.0);
+        for &(i, j, c) in &self.terms {
+            let (i2, j2, a) = ((i * i) as f64, (j * j) as f64, c.abs());
+            slope += a * (i2 / hx + j2 / hy);
+            curvature += a
+                * (i2 * (i2 - 1.0) / (3.0 * hx * hx)
+                    + i2 * j2 / (hx * hy)
+                    + j2 * (j2 - 1.0) / (3.0 * hy * hy));
+        }
+        // Rounding: a relative margin far above the sums' error.
+        let sum = SectionBounds {
+            max_slope: b.max_slope + slope * (1.0 + 1e-9),
+            max_curvature: b.max_curvature + curvature * (1.0 + 1e-9),
+        };
+        (sum.max_slope.is_finite() && sum.max_curvature.is_finite()).then_some(sum)
+    }
+
     fn warnings(&self) -> Vec<String> {
         let (ox, oy) = self.overreach;
         if ox == 0.0 && oy == 0.0 {
@@ -229,6 +259,64 @@ mod tests {
             assert!((v - (nf * phi).cos()).abs() < 1e-13, "{n}");
             assert!((d - nf * (nf * phi).sin() / phi.sin()).abs() < 1e-11, "{n}");
         }
+    }
+
+    #[test]
+    fn section_bounds_hold_on_dense_sections_inside_the_half_widths() {
+        let t = |x, y, c| ChebyshevTerm {
+            x,
+            y,
+            coefficient_mm: c,
+        };
+        let spec = |terms| ChebyshevSpec {
+            base: AsphereSpec {
+                radius_mm: Some(80.0),
+                ..Default::default()
+            },
+            half_width_x_mm: Some(6.0),
+            half_width_y_mm: Some(5.0),
+            terms,
+        };
+        let terms = vec![
+            t(2, 0, 0.003),
+            t(0, 2, -0.002),
+            t(1, 2, 0.0012),
+            t(3, 1, -0.0006),
+            t(4, 4, 0.0002),
+            t(9, 0, 1e-4),
+        ];
+        let s = Chebyshev::new(&spec(terms), PartDisc::centred(10.0)).unwrap();
+        let b = s.section_bounds(5.0).unwrap();
+        let (slope, curvature) =
+            crate::surface::section_bounds::sampled_extremes(&s, 5.0, 360, 4000);
+        assert!(
+            slope <= b.max_slope && curvature <= b.max_curvature,
+            "{b:?} {slope} {curvature}"
+        );
+        // One term T₃(x/X₀) on a flat base: the bounds are reached where the disc meets x = X₀.
+        let one = Chebyshev::new(&spec(vec![t(3, 0, 1e-3)]), PartDisc::centred(10.0)).unwrap();
+        let flat = Chebyshev {
+            base: Asphere::new(&AsphereSpec {
+                curvature_per_mm: Some(0.0),
+                ..Default::default()
+            })
+            .unwrap(),
+            hx: 5.0,
+            ..one
+        };
+        let b = flat.section_bounds(5.0).unwrap();
+        let (slope, curvature) =
+            crate::surface::section_bounds::sampled_extremes(&flat, 5.0, 4, 4000);
+        assert!(
+            slope <= b.max_slope && slope > 0.9999 * b.max_slope,
+            "{b:?} {slope}"
+        );
+        assert!(
+            curvature <= b.max_curvature && curvature > 0.9999 * b.max_curvature,
+            "{b:?} {curvature}"
+        );
+        // Beyond the half-widths: none.
+        assert!(flat.section_bounds(5.5).is_none());
     }
 
     #[test]

@@ -14,7 +14,7 @@
 //! it on every section through the axis), and at r = 0 exactly its slope and curvature are taken
 //! as 0 (the apex has none; the samplers evaluate either side of the kink).
 
-use super::{Asphere, AsphereSpec, Line, Local, Surface, UndefinedError};
+use super::{Asphere, AsphereSpec, Line, Local, SectionBounds, Surface, UndefinedError};
 use crate::field::{FieldError, finite};
 use serde::{Deserialize, Serialize};
 
@@ -141,6 +141,31 @@ impl Surface for OddAsphere {
         }
     }
 
+    /// The conic's bounds plus each term's on a section through the axis: `|d/dt βₙ·|t|ⁿ| ≤
+    /// n·|βₙ|·Rⁿ⁻¹` and `d²/dt² ≤ n(n−1)·|βₙ|·Rⁿ⁻²`. β₁'s apex is a ridge for β₁ < 0; for
+    /// β₁ > 0 it is a valley (the slope rises across it), so there are none.
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        if self.beta1() > 0.0 {
+            return None;
+        }
+        let b = self.conic.section_bounds(radius_mm)?;
+        let r = radius_mm.abs();
+        let (mut slope, mut curvature) = (0.0, 0.0);
+        for (i, beta) in self.beta.iter().enumerate() {
+            let (n, a) = ((i + 1) as f64, beta.abs());
+            slope += n * a * r.powi(i as i32);
+            if i >= 1 {
+                curvature += n * (n - 1.0) * a * r.powi(i as i32 - 1);
+            }
+        }
+        // Rounding: a relative margin far above the sums' error.
+        let sum = SectionBounds {
+            max_slope: b.max_slope + slope * (1.0 + 1e-9),
+            max_curvature: b.max_curvature + curvature * (1.0 + 1e-9),
+        };
+        (sum.max_slope.is_finite() && sum.max_curvature.is_finite()).then_some(sum)
+    }
+
     fn describe(&self) -> String {
         let terms: Vec<String> = self
             .beta
@@ -170,6 +195,25 @@ mod tests {
             coefficients,
         })
         .unwrap()
+    }
+
+    #[test]
+    fn section_bounds_hold_on_dense_sections_and_a_cone_valley_has_none() {
+        for (radius, conic, b) in [
+            (Some(40.0), -0.5, vec![-1e-3, -2e-4, 3e-5, -4e-6, 5e-7]),
+            (None, 0.0, vec![0.0, 0.0, 2e-4, 0.0, -1e-6]),
+        ] {
+            let s = odd(radius, conic, b);
+            let bounds = s.section_bounds(5.0).unwrap();
+            let (slope, curvature) =
+                crate::surface::section_bounds::sampled_extremes(&s, 5.0, 90, 20_000);
+            assert!(
+                slope <= bounds.max_slope && curvature <= bounds.max_curvature,
+                "{bounds:?} {slope} {curvature}"
+            );
+        }
+        // β1 > 0: a cone whose apex is a valley.
+        assert!(odd(None, 0.0, vec![1e-3]).section_bounds(5.0).is_none());
     }
 
     #[test]

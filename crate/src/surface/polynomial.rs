@@ -4,7 +4,7 @@
 //! the XY polynomial and the Zernike families (a Zernike sum is converted into one such
 //! polynomial once).
 
-use super::Local;
+use super::{Local, SectionBounds, Surface};
 
 /// The highest total degree.
 pub const MAX_DEGREE: usize = 20;
@@ -48,6 +48,49 @@ impl Bivariate {
     /// The non-zero terms (i, j, aᵢⱼ), as given.
     pub fn terms(&self) -> &[(usize, usize, f64)] {
         &self.terms
+    }
+
+    /// Bounds on the radial sections `t ↦ P(t·cos θ/N, t·sin θ/N)` over |t| ≤ `radius` mm and
+    /// every θ, N = `norm`: (largest |d/dt|, largest |d²/dt²|). Term by term,
+    /// `aᵢⱼ·cosⁱθ·sinʲθ·(t/N)ⁿ` (n = i + j) has |d/dt| ≤ |aᵢⱼ|·mᵢⱼ·n·(R/N)ⁿ⁻¹/N and
+    /// |d²/dt²| ≤ |aᵢⱼ|·mᵢⱼ·n(n−1)·(R/N)ⁿ⁻²/N², with `mᵢⱼ = max|cosⁱθ·sinʲθ| = √(iⁱ·jʲ/nⁿ)`
+    /// (at tan²θ = j/i). Loose where terms of one degree cancel (a Zernike polynomial's
+    /// monomials): the bound then fails the concavity test and the arc is searched in full.
+    pub fn section_bounds(&self, radius: f64, norm: f64) -> (f64, f64) {
+        let ratio = radius.abs() / norm;
+        let (mut slope, mut curvature) = (0.0, 0.0);
+        for &(i, j, a) in &self.terms {
+            let n = i + j;
+            if n == 0 {
+                continue;
+            }
+            let (fi, fj, fn_) = (i as f64, j as f64, n as f64);
+            let m = (fi.powi(i as i32) * fj.powi(j as i32) / fn_.powi(n as i32)).sqrt();
+            let scaled = a.abs() * m * fn_ / norm;
+            slope += scaled * ratio.powi(n as i32 - 1);
+            if n >= 2 {
+                curvature += scaled * (fn_ - 1.0) * ratio.powi(n as i32 - 2) / norm;
+            }
+        }
+        (slope, curvature)
+    }
+
+    /// The [`SectionBounds`] of `base` + P(x/N, y/N) over the disc of `radius` mm: the base's
+    /// plus [`Bivariate::section_bounds`] (with a margin for their rounding); `None` where the
+    /// base gives none.
+    pub fn section_bounds_on(
+        &self,
+        base: &dyn Surface,
+        radius: f64,
+        norm: f64,
+    ) -> Option<SectionBounds> {
+        let b = base.section_bounds(radius)?;
+        let (slope, curvature) = self.section_bounds(radius, norm);
+        let sum = SectionBounds {
+            max_slope: b.max_slope + slope * (1.0 + 1e-9),
+            max_curvature: b.max_curvature + curvature * (1.0 + 1e-9),
+        };
+        (sum.max_slope.is_finite() && sum.max_curvature.is_finite()).then_some(sum)
     }
 
     /// `[P, P_u, P_v, P_uu, P_uv, P_vv]` at (u, v).
@@ -95,6 +138,52 @@ fn powers(t: f64, degree: usize) -> [[f64; 3]; MAX_DEGREE + 1] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The largest |d/dt| and |d²/dt²| of `t ↦ P(t·cos θ/N, t·sin θ/N)` over 720 angles and
+    /// |t| ≤ R, sampled.
+    fn sampled(p: &Bivariate, radius: f64, norm: f64) -> (f64, f64) {
+        let (mut d1, mut d2) = (0.0f64, 0.0f64);
+        for k in 0..720 {
+            let (s, c) = (std::f64::consts::TAU * k as f64 / 720.0).sin_cos();
+            for i in 0..=2000 {
+                let t = radius * (i as f64 / 1000.0 - 1.0);
+                let [_, pu, pv, puu, puv, pvv] = p.eval(t * c / norm, t * s / norm);
+                d1 = d1.max(((pu * c + pv * s) / norm).abs());
+                d2 =
+                    d2.max(((puu * c * c + 2.0 * puv * c * s + pvv * s * s) / (norm * norm)).abs());
+            }
+        }
+        (d1, d2)
+    }
+
+    #[test]
+    fn section_bounds_cover_dense_sections_and_one_term_reaches_them() {
+        let (radius, norm) = (4.0, 3.0);
+        let mixed = Bivariate::new(vec![
+            (2, 1, 3e-3),
+            (0, 4, -2e-3),
+            (1, 0, 1e-3),
+            (5, 3, 4e-4),
+            (0, 10, -1e-4),
+            (6, 0, 2e-4),
+            (0, 0, 7.0),
+        ]);
+        let (slope, curvature) = mixed.section_bounds(radius, norm);
+        let (d1, d2) = sampled(&mixed, radius, norm);
+        assert!(
+            d1 <= slope && d2 <= curvature,
+            "{d1} {slope} {d2} {curvature}"
+        );
+        // A single term's bound is its maximum, at tan²θ = j/i and |t| = R.
+        let single = Bivariate::new(vec![(2, 1, -3e-3)]);
+        let (slope, curvature) = single.section_bounds(radius, norm);
+        let (d1, d2) = sampled(&single, radius, norm);
+        assert!(d1 <= slope && d1 > 0.9999 * slope, "{d1} {slope}");
+        assert!(
+            d2 <= curvature && d2 > 0.9999 * curvature,
+            "{d2} {curvature}"
+        );
+    }
 
     #[test]
     fn evaluates_a_hand_written_polynomial_and_its_derivatives() {

@@ -6,7 +6,9 @@
 //! [`SectionBounds::nose_height_concavity`]).
 //!
 //! A family gives bounds only where it can prove them from its formula (the even asphere, the
-//! concave lens array); every other family gives none and is searched in full.
+//! concave lens array, the sinusoidal grid, the tilted flat, and the XY polynomial and Zernike
+//! surfaces on an even asphere base, [`crate::surface::polynomial::Bivariate::section_bounds`]);
+//! every other family gives none and is searched in full.
 
 /// Upper bounds on a surface's radial sections over a disc (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -32,6 +34,29 @@ impl SectionBounds {
         (half_angle < std::f64::consts::FRAC_PI_2 && q.is_finite() && q < 0.9 && r > 0.0)
             .then(|| r * half_angle.cos() * (1.0 - q))
     }
+}
+
+/// The largest |f′| and f″ of the radial sections of `surface` sampled at `angles` angles
+/// (from 0) and `samples` + 1 points of `t ∈ [−radius, radius]` each: what a family's bounds
+/// must cover, found by brute force (for their tests).
+#[cfg(test)]
+pub(crate) fn sampled_extremes(
+    surface: &dyn super::Surface,
+    radius: f64,
+    angles: usize,
+    samples: usize,
+) -> (f64, f64) {
+    let (mut slope, mut curvature) = (0.0f64, f64::NEG_INFINITY);
+    for k in 0..angles {
+        let (s, c) = (std::f64::consts::TAU * k as f64 / angles as f64).sin_cos();
+        for i in 0..=samples {
+            let t = radius * (2.0 * i as f64 / samples as f64 - 1.0);
+            let l = surface.local(t * c, t * s).unwrap().radial(c, s);
+            slope = slope.max(l.slope.abs());
+            curvature = curvature.max(l.curvature_term);
+        }
+    }
+    (slope, curvature)
 }
 
 #[cfg(test)]

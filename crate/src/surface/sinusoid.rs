@@ -2,7 +2,7 @@
 //! a product of two sines whose derivatives follow by the chain rule
 //! (`∂z/∂x = A·kx·cos(u)·sin(v)`, `∂²z/∂x² = −kx²·z`, `∂²z/∂x∂y = A·kx·ky·cos(u)·cos(v)`).
 
-use super::{Local, Surface, UndefinedError};
+use super::{Local, SectionBounds, Surface, UndefinedError};
 use crate::field::{FieldError, finite, length};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::TAU;
@@ -75,6 +75,22 @@ impl Surface for Sinusoid {
         self.feature
     }
 
+    /// Along the direction w = (cos θ, sin θ), with w′ = (kx·cos θ, ky·sin θ) and the phases
+    /// u, v: the slope `A·(w′₁·cos u·sin v + w′₂·sin u·cos v)` is at most |A|·|w′| (Cauchy–Schwarz:
+    /// `(cos u·sin v)² + (sin u·cos v)² ≤ 1`), and the curvature `A·w′ᵀ·M·w′`, M =
+    /// `[[−sin u·sin v, cos u·cos v], [cos u·cos v, −sin u·sin v]]` with eigenvalues
+    /// `cos(u + v)` and `−cos(u − v)`, at most |A|·|w′|²; |w′| ≤ max(kx, ky). Both are reached
+    /// (along the axis of the shorter wavelength), on any disc; there are no kinks.
+    fn section_bounds(&self, _radius_mm: f64) -> Option<SectionBounds> {
+        let k = self.kx.max(self.ky);
+        let slope = self.a.abs() * k;
+        // Rounding: a relative margin far above the few operations' error.
+        Some(SectionBounds {
+            max_slope: slope * (1.0 + 1e-9),
+            max_curvature: slope * k * (1.0 + 1e-9),
+        })
+    }
+
     fn describe(&self) -> String {
         format!(
             "sinusoidal grid A {} mm, λx {} mm, λy {} mm, φx {}°, φy {}°",
@@ -90,6 +106,36 @@ impl Surface for Sinusoid {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::surface::section_bounds::sampled_extremes;
+
+    #[test]
+    fn section_bounds_hold_on_dense_sections_and_are_reached() {
+        for (a, lx, ly, px, py) in [
+            (0.002, 1.0, 2.0, 10.0, 90.0),
+            (-0.01, 0.7, 0.5, 33.0, -20.0),
+            (0.005, 1.0, 1.0, 0.0, 0.0),
+        ] {
+            let s = Sinusoid::new(&SinusoidSpec {
+                amplitude_mm: a,
+                wavelength_x_mm: lx,
+                wavelength_y_mm: ly,
+                phase_x_deg: px,
+                phase_y_deg: py,
+            })
+            .unwrap();
+            let b = s.section_bounds(4.0).unwrap();
+            let (slope, curvature) = sampled_extremes(&s, 4.0, 360, 4000);
+            assert!(
+                slope <= b.max_slope && curvature <= b.max_curvature,
+                "{b:?} {slope} {curvature}"
+            );
+            // Along the axis of the shorter wavelength both are reached (to the sampling).
+            assert!(
+                slope > 0.995 * b.max_slope && curvature > 0.99 * b.max_curvature,
+                "{b:?} {slope} {curvature}"
+            );
+        }
+    }
 
     #[test]
     fn sag_is_the_product_of_sines() {

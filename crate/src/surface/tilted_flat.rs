@@ -5,7 +5,7 @@
 //! `z(ρ, θ) = ρ·tan τ·cos(θ − β)`: the simplest test case for the FTS/SSS splitter (DESIGN.md,
 //! "Splitting"). The gradient `tan τ·(cos β, sin β)` is exact and the Hessian is zero.
 
-use super::{Local, PartDisc, Surface, UndefinedError};
+use super::{Local, PartDisc, SectionBounds, Surface, UndefinedError};
 use crate::field::{FieldError, finite};
 use serde::{Deserialize, Serialize};
 
@@ -76,6 +76,15 @@ impl Surface for TiltedFlat {
         f64::INFINITY
     }
 
+    /// A radial section's slope is the gradient along its direction, at most |tan τ| (reached
+    /// towards the azimuth); its curvature is 0.
+    fn section_bounds(&self, _radius_mm: f64) -> Option<SectionBounds> {
+        Some(SectionBounds {
+            max_slope: self.gx.hypot(self.gy) * (1.0 + 1e-12),
+            max_curvature: 0.0,
+        })
+    }
+
     fn describe(&self) -> String {
         format!(
             "tilted flat: tilt {}°, rising fastest towards azimuth {}°",
@@ -87,6 +96,7 @@ impl Surface for TiltedFlat {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::surface::section_bounds::sampled_extremes;
 
     fn flat(tilt_deg: f64, azimuth_deg: f64) -> Result<TiltedFlat, FieldError> {
         TiltedFlat::new(
@@ -106,6 +116,18 @@ mod tests {
         assert!((l.z - 2.0).abs() < 1e-15, "{}", l.z);
         assert!((l.zy - 1.0).abs() < 1e-15 && l.zx.abs() < 1e-16);
         assert_eq!((l.zxx, l.zxy, l.zyy), (0.0, 0.0, 0.0));
+    }
+
+    #[test]
+    fn section_bounds_are_the_tilt() {
+        for (tilt, azimuth) in [(0.05, 0.0), (-30.0, 200.0), (10.0, 45.0)] {
+            let s = flat(tilt, azimuth).unwrap();
+            let b = s.section_bounds(5.0).unwrap();
+            let (slope, curvature) = sampled_extremes(&s, 5.0, 3600, 10);
+            let tan = f64::tan(f64::to_radians(tilt)).abs();
+            assert!((b.max_slope - tan).abs() <= 1e-11 * tan && slope <= b.max_slope);
+            assert!(slope > (1.0 - 1e-6) * tan && curvature == 0.0 && b.max_curvature == 0.0);
+        }
     }
 
     #[test]

@@ -6,7 +6,7 @@
 //! these with N = 1.
 
 use super::polynomial::Bivariate;
-use super::{Asphere, AsphereSpec, Local, Surface, UndefinedError};
+use super::{Asphere, AsphereSpec, Local, SectionBounds, Surface, UndefinedError};
 use crate::field::{FieldError, finite, length};
 use serde::{Deserialize, Serialize};
 
@@ -89,6 +89,13 @@ impl Surface for XyPolynomial {
         Ok(l)
     }
 
+    /// The base asphere's bounds plus the polynomial's, term by term
+    /// ([`Bivariate::section_bounds_on`]).
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        self.poly
+            .section_bounds_on(&self.base, radius_mm, self.norm)
+    }
+
     fn feature_length_mm(&self) -> f64 {
         match self.degree() {
             0 => self.base.feature_length_mm(),
@@ -125,6 +132,40 @@ mod tests {
             norm_radius_mm: 5.0,
             terms,
         }
+    }
+
+    #[test]
+    fn section_bounds_are_the_base_and_the_terms_and_hold_on_dense_sections() {
+        let t = |x, y, c| XyTerm {
+            x,
+            y,
+            coefficient_mm: c,
+        };
+        let s = XyPolynomial::new(&spec(vec![
+            t(2, 0, 0.004),
+            t(0, 2, -0.004),
+            t(2, 1, 0.0015),
+            t(0, 3, 5e-4),
+        ]))
+        .unwrap();
+        let b = s.section_bounds(6.0).unwrap();
+        let base = s.base.section_bounds(6.0).unwrap();
+        assert!(b.max_slope > base.max_slope && b.max_curvature > base.max_curvature);
+        let (slope, curvature) =
+            crate::surface::section_bounds::sampled_extremes(&s, 6.0, 360, 2000);
+        assert!(
+            slope <= b.max_slope && curvature <= b.max_curvature,
+            "{b:?} {slope} {curvature}"
+        );
+        // No base bounds, no bounds (a sphere smaller than the disc).
+        let mut small = spec(vec![t(1, 1, 1e-3)]);
+        small.base.radius_mm = Some(4.0);
+        assert!(
+            XyPolynomial::new(&small)
+                .unwrap()
+                .section_bounds(6.0)
+                .is_none()
+        );
     }
 
     #[test]

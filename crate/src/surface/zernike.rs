@@ -32,7 +32,7 @@
 //! any realistic coefficient. Crate docs: `crate/docs/zernike.md` lists both orderings.
 
 use super::polynomial::{Bivariate, Dense};
-use super::{Asphere, AsphereSpec, Local, PartDisc, Surface, UndefinedError};
+use super::{Asphere, AsphereSpec, Local, PartDisc, SectionBounds, Surface, UndefinedError};
 use crate::field::{FieldError, finite, length};
 use serde::{Deserialize, Serialize};
 
@@ -289,6 +289,13 @@ impl Surface for Zernike {
     /// and tilt have no feature). Rₙᵐ has its extrema closest together near ρ = 1, where the
     /// zeros of `Rₙ⁰(ρ) = P_(n/2)(2ρ² − 1)` are about 12/n² apart in ρ: more than 1/(2n) for
     /// every n ≤ 20, so N/(2n) does not step over a slope reversal of any single term.
+    /// The base asphere's bounds plus the polynomial's, term by term
+    /// ([`Bivariate::section_bounds_on`]).
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        self.poly
+            .section_bounds_on(&self.base, radius_mm, self.norm)
+    }
+
     fn feature_length_mm(&self) -> f64 {
         if self.order < 2 {
             self.base.feature_length_mm()
@@ -332,6 +339,27 @@ mod tests {
             },
             PartDisc::centred(2.0),
         )
+    }
+
+    #[test]
+    fn section_bounds_hold_on_dense_sections() {
+        // Low orders (the example jobs'), and a single high order whose monomials cancel: its
+        // bound holds but is far from tight.
+        let low = zernike(
+            Convention::Fringe,
+            vec![0.0, 0.0, 0.0, 0.0, 0.003, 0.002, 0.0, -0.0025, 0.0, 0.002],
+        )
+        .unwrap();
+        let high = zernike(Convention::Standard, unit(45)).unwrap();
+        for s in [low, high] {
+            let b = s.section_bounds(2.0).unwrap();
+            let (slope, curvature) =
+                crate::surface::section_bounds::sampled_extremes(&s, 2.0, 360, 2000);
+            assert!(
+                slope <= b.max_slope && curvature <= b.max_curvature,
+                "{b:?} {slope} {curvature}"
+            );
+        }
     }
 
     fn unit(j: usize) -> Vec<f64> {

@@ -29,8 +29,10 @@
 //! global one. It is then found without the grid: Newton on F′ = 0 from a = 0, the kinks'
 //! sides probed where a step would cross one, the maximum bracketed and refined as above, about
 //! 4 evaluations a point instead of 20 or more. The bounds are the certificate; a surface
-//! without them, or a nose too wide for them, gets the full search. Even aspheres and concave
-//! lens arrays give bounds; every other family is searched in full.
+//! without them, or a nose too wide for them, gets the full search. Even aspheres, concave
+//! lens arrays, sinusoidal grids, tilted flats, odd aspheres (a cone only with its apex a
+//! ridge), and XY polynomial, Zernike and Chebyshev surfaces on an even asphere (Chebyshev
+//! within its half-widths) give bounds; every other family is searched in full.
 //!
 //! **Warm start.** Along a path the certificate does not depend on where Newton starts: with
 //! one maximum on the arc, any start converges to it (kinks probed as before). A path therefore

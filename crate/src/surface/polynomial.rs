@@ -76,21 +76,16 @@ impl Bivariate {
     }
 
     /// The [`SectionBounds`] of `base` + P(x/N, y/N) over the disc of `radius` mm: the base's
-    /// plus [`Bivariate::section_bounds`] (with a margin for their rounding); `None` where the
-    /// base gives none.
+    /// plus [`Bivariate::section_bounds`] ([`SectionBounds::plus`]); `None` where the base gives
+    /// none.
     pub fn section_bounds_on(
         &self,
         base: &dyn Surface,
         radius: f64,
         norm: f64,
     ) -> Option<SectionBounds> {
-        let b = base.section_bounds(radius)?;
         let (slope, curvature) = self.section_bounds(radius, norm);
-        let sum = SectionBounds {
-            max_slope: b.max_slope + slope * (1.0 + 1e-9),
-            max_curvature: b.max_curvature + curvature * (1.0 + 1e-9),
-        };
-        (sum.max_slope.is_finite() && sum.max_curvature.is_finite()).then_some(sum)
+        base.section_bounds(radius)?.plus(slope, curvature)
     }
 
     /// `[P, P_u, P_v, P_uu, P_uv, P_vv]` at (u, v).

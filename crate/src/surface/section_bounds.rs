@@ -20,6 +20,17 @@ pub struct SectionBounds {
 }
 
 impl SectionBounds {
+    /// These bounds with a term's added (a sum's section): `slope` ≥ the term's |f′| and
+    /// `curvature` ≥ its |f″|, each with a relative margin far above the sums' rounding; `None`
+    /// where not finite.
+    pub fn plus(self, slope: f64, curvature: f64) -> Option<SectionBounds> {
+        let sum = SectionBounds {
+            max_slope: self.max_slope + slope * (1.0 + 1e-9),
+            max_curvature: self.max_curvature + curvature * (1.0 + 1e-9),
+        };
+        (sum.max_slope.is_finite() && sum.max_curvature.is_finite()).then_some(sum)
+    }
+
     /// A lower bound m > 0 of −F″ for the nose height `F(a) = f(ρ_s + r·sin a) + r·cos a` over
     /// |a| ≤ `half_angle` (< 90°) wherever the arc stays on the disc, F′ dropping by at least
     /// m·Δa over any Δa (ridges at the slope kinks only make it drop more); `None` where F
@@ -57,6 +68,25 @@ pub(crate) fn sampled_extremes(
         }
     }
     (slope, curvature)
+}
+
+/// `surface`'s bounds over the disc of `radius`, asserted to cover its sections sampled as
+/// [`sampled_extremes`] does; with the sampled extremes, for the tests of tightness.
+#[cfg(test)]
+pub(crate) fn assert_bounds_hold(
+    surface: &dyn super::Surface,
+    radius: f64,
+    angles: usize,
+    samples: usize,
+) -> (SectionBounds, f64, f64) {
+    let b = surface.section_bounds(radius).expect("section bounds");
+    let (slope, curvature) = sampled_extremes(surface, radius, angles, samples);
+    assert!(
+        slope <= b.max_slope && curvature <= b.max_curvature,
+        "{}: {b:?} against the sampled slope {slope} and curvature {curvature}",
+        surface.describe()
+    );
+    (b, slope, curvature)
 }
 
 #[cfg(test)]

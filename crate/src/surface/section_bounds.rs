@@ -5,9 +5,9 @@
 //! nose over the arc is concave, so that its one local maximum is the global one (see
 //! [`SectionBounds::nose_height_concavity`]).
 //!
-//! A family gives bounds only where it can prove them from its formula (the even asphere, the
-//! concave lens array, the sinusoidal grid, the tilted flat, and the XY polynomial and Zernike
-//! surfaces on an even asphere base, [`crate::surface::polynomial::Bivariate::section_bounds`]);
+//! A family gives bounds only where it can prove them from its formula (even and odd aspheres,
+//! the concave lens array, sinusoidal grid and tilted flat, XY polynomial, Zernike and Chebyshev
+//! surfaces on an even asphere, [`crate::surface::polynomial::Bivariate::section_bounds`]);
 //! every other family gives none and is searched in full.
 
 /// Upper bounds on a surface's radial sections over a disc (see the module docs).

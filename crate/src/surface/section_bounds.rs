@@ -51,7 +51,7 @@ impl SectionBounds {
 /// (from 0) and `samples` + 1 points of `t ∈ [−radius, radius]` each: what a family's bounds
 /// must cover, found by brute force (for their tests).
 #[cfg(test)]
-pub(crate) fn sampled_extremes(
+fn sampled_extremes(
     surface: &dyn super::Surface,
     radius: f64,
     angles: usize,

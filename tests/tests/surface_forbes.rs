@@ -23,6 +23,8 @@ use common::{
     small_job,
 };
 use proptest::prelude::*;
+use spiralcam::job::Job;
+use spiralcam::plan::Planner;
 use spiralcam::surface::q_2d::Q2dTerm;
 use spiralcam::surface::q_polynomials::{MAX_ORDER, QSum, q2d, qbfs, qcon};
 use spiralcam::surface::{Q2d, Q2dSpec, QBfs, QBfsSpec, QCon, QConSpec, Surface};
@@ -622,6 +624,10 @@ fn planned_paths_touch_without_cutting() {
         ),
     ];
     for j in jobs {
+        // The surfaces' section bounds prove the nose height concave: the contacts come from
+        // the concave shortcut (`Surface::section_bounds`), held to the same check.
+        let planner = Planner::new(&Job::from_json(&j).unwrap()).unwrap();
+        assert!(planner.path().concavity().is_some(), "{j}");
         let n = check_planned_path(&j, &none, 2000);
         assert!(n > 200, "{n} points");
     }

@@ -11,7 +11,7 @@
 //! With cx = cy and kx = ky it is the conic of revolution of [`super::Asphere`]. It is
 //! undefined where `1 − P ≤ 0` (the slope turns vertical there).
 
-use super::{Local, PartDisc, Surface, UndefinedError};
+use super::{Local, PartDisc, SectionBounds, Surface, UndefinedError};
 use crate::field::{FieldError, finite};
 use serde::{Deserialize, Serialize};
 
@@ -176,6 +176,29 @@ impl Surface for Biconic {
         f64::INFINITY
     }
 
+    /// A radial section at angle θ is itself a conic profile: with `x = t·cos θ`, `y = t·sin θ`,
+    /// `A = c·t²` and `P = p·t²`, `c = cx·cos²θ + cy·sin²θ`, `p = px·cos²θ + py·sin²θ`, so
+    /// `f = c·t²/(1 + w)`, `f′ = c·t/w`, `f″ = c/w³` with `w = √(1 − p·t²)` (from
+    /// `f = c(1 − w)/p`). c and p are convex combinations of their X and Y values, and w is
+    /// least at |t| = T, so `|f′| ≤ max(|cx|, |cy|)·T/w₀` and `f″ ≤ max(cx, cy, 0)/w₀³` with
+    /// `w₀ = √(1 − max(px, py, 0)·T²)`; none where w₀ is not real (the rim inside the disc).
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        let t = radius_mm.abs();
+        let q = 1.0 - self.px.max(self.py).max(0.0) * t * t;
+        if q.is_nan() || q <= 0.0 {
+            return None;
+        }
+        let w = q.sqrt();
+        SectionBounds {
+            max_slope: 0.0,
+            max_curvature: 0.0,
+        }
+        .plus(
+            self.cx.abs().max(self.cy.abs()) * t / w,
+            self.cx.max(self.cy).max(0.0) / (q * w),
+        )
+    }
+
     fn describe(&self) -> String {
         format!(
             "biconic X: {}, kx {}; Y: {}, ky {}",
@@ -193,6 +216,35 @@ mod tests {
 
     fn biconic(spec: BiconicSpec) -> Result<Biconic, FieldError> {
         Biconic::new(&spec, PartDisc::centred(5.0))
+    }
+
+    #[test]
+    fn section_bounds_hold_on_dense_sections() {
+        use crate::surface::section_bounds::assert_bounds_hold;
+        let spec = |rx, ry, kx, ky| BiconicSpec {
+            radius_x_mm: Some(rx),
+            radius_y_mm: Some(ry),
+            conic_x: kx,
+            conic_y: ky,
+            ..Default::default()
+        };
+        for (s, radius) in [
+            (spec(40.0, 55.0, -0.8, 0.3), 8.0),
+            (spec(-12.0, 30.0, 2.0, -3.0), 4.0),
+            (spec(-20.0, -9.0, 0.0, -1.0), 5.0),
+        ] {
+            assert_bounds_hold(&biconic(s).unwrap(), radius, 72, 4000);
+        }
+        // A conic of revolution: the bounds are its slope and curvature at the disc's edge.
+        let conic = biconic(spec(15.0, 15.0, 0.5, 0.5)).unwrap();
+        let (b, slope, curvature) = assert_bounds_hold(&conic, 6.0, 8, 4000);
+        assert!(b.max_slope <= slope * (1.0 + 1e-8), "{b:?} {slope}");
+        assert!(
+            b.max_curvature <= curvature * (1.0 + 1e-8),
+            "{b:?} {curvature}"
+        );
+        // The rim inside the disc: none.
+        assert!(conic.section_bounds(15.0 / 1.5f64.sqrt()).is_none());
     }
 
     #[test]

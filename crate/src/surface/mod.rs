@@ -50,6 +50,7 @@ pub mod q_2d;
 pub mod q_bfs;
 pub mod q_con;
 pub mod q_polynomials;
+pub mod q_section_bounds;
 pub mod reframed;
 pub mod scattered;
 pub mod section_bounds;

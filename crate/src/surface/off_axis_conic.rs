@@ -21,7 +21,7 @@
 //! tilt is put back by the fixture). Derivatives are the parent's (a translation does not
 //! change them), less the constant tilt.
 
-use super::{Asphere, AsphereSpec, Local, PartDisc, Surface, UndefinedError};
+use super::{Asphere, AsphereSpec, Local, PartDisc, SectionBounds, Surface, UndefinedError};
 use crate::field::{FieldError, finite, non_negative};
 use serde::{Deserialize, Serialize};
 
@@ -126,6 +126,20 @@ impl Surface for OffAxisConic {
         f64::INFINITY
     }
 
+    /// The parent's bounds over the disc of radius d + T about its axis (which holds the part):
+    /// a section's curvature is `uᵀHu` for the parent's Hessian H, at most its larger
+    /// eigenvalue, `p″` or `p′/ρ` (the mean of p″ over [0, ρ]), both within the parent's
+    /// sections' bound; its slope is the parent's gradient less the removed tilt, at most the
+    /// parent's slope bound plus |tilt|.
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        let parent = self.parent.section_bounds(self.d + radius_mm.abs())?;
+        SectionBounds {
+            max_slope: 0.0,
+            max_curvature: parent.max_curvature,
+        }
+        .plus(parent.max_slope + self.tilt.0.hypot(self.tilt.1), 0.0)
+    }
+
     fn describe(&self) -> String {
         format!(
             "off-axis segment of the {} at d {} mm, clocking {}°{}",
@@ -160,6 +174,29 @@ mod tests {
 
     fn build(spec: &OffAxisConicSpec) -> Result<OffAxisConic, FieldError> {
         OffAxisConic::new(spec, PartDisc::centred(5.0))
+    }
+
+    #[test]
+    fn section_bounds_hold_on_dense_sections() {
+        use crate::surface::section_bounds::assert_bounds_hold;
+        for (radius, conic, d, clocking, remove_tilt, edge) in [
+            (100.0, -1.0, 15.0, 0.0, false, 6.0),
+            (100.0, -1.0, 15.0, 30.0, true, 6.0),
+            (-60.0, 0.5, 8.0, -100.0, true, 4.0),
+            (40.0, -2.0, 0.0, 0.0, false, 5.0),
+        ] {
+            let mut s = spec(radius, conic, d);
+            s.clocking_deg = clocking;
+            s.remove_tilt = remove_tilt;
+            assert_bounds_hold(&build(&s).unwrap(), edge, 72, 4000);
+        }
+        // The parent's rim within d + T: none.
+        assert!(
+            build(&spec(20.0, 0.0, 15.0))
+                .unwrap()
+                .section_bounds(6.0)
+                .is_none()
+        );
     }
 
     #[test]

@@ -14,8 +14,9 @@
 //! Undefined where c²ρ² ≥ 1; beyond u = 1 the polynomials continue.
 
 use super::jet::Jet;
-use super::q_polynomials::{MAX_ORDER, QSum, feature_length};
-use super::{Asphere, AsphereSpec, Local, Surface, UndefinedError};
+use super::q_polynomials::{MAX_ORDER, QSum, envelope, feature_length};
+use super::q_section_bounds::{along_sphere_normal, section_term_bounds};
+use super::{Asphere, AsphereSpec, Local, SectionBounds, Surface, UndefinedError};
 use crate::field::{FieldError, finite, positive};
 use serde::{Deserialize, Serialize};
 
@@ -219,16 +220,7 @@ impl Surface for Q2d {
         })?;
         let s = Jet::squared_distance(x, y);
         let xi = s2 / (self.norm * self.norm);
-        let [p, p1, p2] = self.symmetric.eval(xi);
-        let env = xi * (1.0 - xi);
-        let mut departure = self.radial(
-            &s,
-            [
-                env * p,
-                (1.0 - 2.0 * xi) * p + env * p1,
-                -2.0 * p + 2.0 * (1.0 - 2.0 * xi) * p1 + env * p2,
-            ],
-        );
+        let mut departure = self.radial(&s, envelope(xi, self.symmetric.eval(xi)));
         if !self.orders.is_empty() {
             let h = self.harmonics(x, y);
             for o in &self.orders {
@@ -254,6 +246,22 @@ impl Surface for Q2d {
         } else {
             feature_length(self.norm, self.degree)
         }
+    }
+
+    /// The sphere's bounds plus those of the departure along its normal: the symmetric part's
+    /// and, for each order m, its cos mθ and sin mθ sums' ([`super::q_section_bounds`]).
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        let t = radius_mm.abs();
+        let (norm, sym) = (self.norm, &self.symmetric);
+        let mut a = section_term_bounds(0, sym.degree() + 2, norm, t, |x| envelope(x, sym.eval(x)));
+        for o in &self.orders {
+            for sum in [&o.cos, &o.sin].into_iter().filter(|q| !q.is_zero()) {
+                let b = section_term_bounds(o.m, sum.degree(), norm, t, |x| sum.eval(x));
+                a = [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+            }
+        }
+        let (slope, curvature) = along_sphere_normal(self.c, t, a)?;
+        self.sphere.section_bounds(t)?.plus(slope, curvature)
     }
 
     fn describe(&self) -> String {

@@ -15,9 +15,10 @@
 
 use super::asphere::radial_at;
 use super::q_polynomials::{
-    QSum, check_coefficients, describe_coefficients, rotational_feature_length,
+    QSum, check_coefficients, describe_coefficients, envelope, rotational_feature_length,
 };
-use super::{Asphere, AsphereSpec, Local, Surface, UndefinedError};
+use super::q_section_bounds::{along_sphere_normal, section_term_bounds};
+use super::{Asphere, AsphereSpec, Local, SectionBounds, Surface, UndefinedError};
 use crate::field::{FieldError, positive};
 use serde::{Deserialize, Serialize};
 
@@ -71,11 +72,8 @@ impl QBfs {
         let [z, zs, zss] = self.sphere.in_s(s)?;
         let n2 = self.norm * self.norm;
         let xi = s / n2;
-        let [p, p1, p2] = self.sum.eval(xi);
-        let env = xi * (1.0 - xi);
-        let a = env * p;
-        let a_s = ((1.0 - 2.0 * xi) * p + env * p1) / n2;
-        let a_ss = (-2.0 * p + 2.0 * (1.0 - 2.0 * xi) * p1 + env * p2) / (n2 * n2);
+        let [a, a_x, a_xx] = envelope(xi, self.sum.eval(xi));
+        let (a_s, a_ss) = (a_x / n2, a_xx / (n2 * n2));
         let c2 = self.c * self.c;
         let g = 1.0 / (1.0 - c2 * s).sqrt();
         let g3 = g * g * g;
@@ -97,6 +95,17 @@ impl Surface for QBfs {
     /// [`rotational_feature_length`] of the coefficients.
     fn feature_length_mm(&self) -> f64 {
         rotational_feature_length(self.norm, &self.a)
+    }
+
+    /// The sphere's bounds plus those of the departure `u²(1 − u²)·S(u²)` along its normal
+    /// ([`super::q_section_bounds`]).
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        let t = radius_mm.abs();
+        let a = section_term_bounds(0, self.sum.degree() + 2, self.norm, t, |x| {
+            envelope(x, self.sum.eval(x))
+        });
+        let (slope, curvature) = along_sphere_normal(self.c, t, a)?;
+        self.sphere.section_bounds(t)?.plus(slope, curvature)
     }
 
     fn describe(&self) -> String {

@@ -12,7 +12,8 @@ use super::asphere::radial_at;
 use super::q_polynomials::{
     QSum, check_coefficients, describe_coefficients, rotational_feature_length,
 };
-use super::{Asphere, AsphereSpec, Local, Surface, UndefinedError};
+use super::q_section_bounds::section_term_bounds;
+use super::{Asphere, AsphereSpec, Local, SectionBounds, Surface, UndefinedError};
 use crate::field::{FieldError, positive};
 use serde::{Deserialize, Serialize};
 
@@ -85,6 +86,14 @@ impl Surface for QCon {
     /// [`rotational_feature_length`] of the coefficients.
     fn feature_length_mm(&self) -> f64 {
         rotational_feature_length(self.norm, &self.a)
+    }
+
+    /// The conic's bounds plus the departure's `u⁴·S(u²)` ([`super::q_section_bounds`]).
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        let t = radius_mm.abs();
+        let [_, slope, curvature] =
+            section_term_bounds(4, self.sum.degree(), self.norm, t, |x| self.sum.eval(x));
+        self.conic.section_bounds(t)?.plus(slope, curvature)
     }
 
     fn describe(&self) -> String {

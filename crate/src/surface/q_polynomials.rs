@@ -83,6 +83,16 @@ pub fn rotational_feature_length(norm: f64, a: &[f64]) -> f64 {
 /// A value with its first and second derivatives in x: `[p, dp/dx, d²p/dx²]`.
 pub type Jet1 = [f64; 3];
 
+/// The jet of `x(1 − x)·S(x)` (Qbfs's envelope `u²(1 − u²)` times a sum) from S's jet at x.
+pub fn envelope(x: f64, [p, p1, p2]: Jet1) -> Jet1 {
+    let env = x * (1.0 - x);
+    [
+        env * p,
+        (1.0 - 2.0 * x) * p + env * p1,
+        -2.0 * p + 2.0 * (1.0 - 2.0 * x) * p1 + env * p2,
+    ]
+}
+
 /// A family of polynomials pₙ(x): the first few given by their monomial coefficients, the rest
 /// by `pₙ = (αₙ + βₙ·x)·pₙ₋₁ − γₙ·pₙ₋₂`.
 #[derive(Debug, Clone, PartialEq)]
@@ -149,6 +159,11 @@ impl QSum {
     /// Whether every coefficient is zero.
     pub fn is_zero(&self) -> bool {
         self.d.iter().all(|&d| d == 0.0)
+    }
+
+    /// The degree of the sum in x (at most that of its last term; 0 for none).
+    pub fn degree(&self) -> usize {
+        self.d.len().saturating_sub(1)
     }
 
     /// `Σ aₙ·Qbfsₙ(x)` for a = `a` (at most [`MAX_ORDER`] + 1 terms).

@@ -256,18 +256,25 @@ impl NoseCompensator {
     }
 
     /// The one-way tip height `z_c − r` over the point (ρ, θ) of `surface`: the height HCAA
-    /// samples ([`crate::path::hcaa::TipHeight`]).
+    /// samples ([`crate::path::hcaa::TipHeight`]); `concavity` the path's certificate
+    /// ([`NoseCompensator::concavity`]).
     pub fn tip_height(
         &self,
         surface: &dyn Surface,
+        concavity: Option<f64>,
         rho: f64,
         theta: f64,
     ) -> Result<f64, UndefinedError> {
         let (s, c) = theta.sin_cos();
-        Ok(self.compensate(surface, rho, c, s)?.z_tip)
+        Ok(self
+            .compensate_from(surface, concavity, rho, c, s, None)?
+            .z_tip)
     }
 
     /// The contact for the spiral point at radius `rho_s` and angle with cosine/sine `(c, s)`.
+    /// It proves the certificate afresh ([`NoseCompensator::concavity`]: a few thousand
+    /// evaluations of a polynomial for the Q surfaces); a path computes it once and calls
+    /// [`NoseCompensator::compensate_from`].
     pub fn compensate(
         &self,
         surface: &dyn Surface,

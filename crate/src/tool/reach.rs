@@ -406,6 +406,8 @@ fn angular_extent(sorted: &[usize]) -> (usize, usize) {
 struct Envelope<'a> {
     surface: &'a dyn Surface,
     nose: &'a NoseCompensator,
+    /// The nose's certificate on the surface ([`NoseCompensator::concavity`]), proven once.
+    concavity: Option<f64>,
     c: f64,
     s: f64,
     half_width: f64,
@@ -434,6 +436,7 @@ impl<'a> Envelope<'a> {
         Self {
             surface,
             nose,
+            concavity: nose.concavity(surface),
             c,
             s,
             half_width,
@@ -444,7 +447,7 @@ impl<'a> Envelope<'a> {
     fn center(&self, rho_s: f64) -> Result<f64, UndefinedError> {
         Ok(self
             .nose
-            .compensate(self.surface, rho_s, self.c, self.s)?
+            .compensate_from(self.surface, self.concavity, rho_s, self.c, self.s, None)?
             .z_center)
     }
 

@@ -65,7 +65,8 @@ pub fn spiral(
         )
         .map_err(within),
         Sampling::Hcaa { .. } | Sampling::Adaptive { .. } => {
-            let tip = |rho: f64, theta: f64| nose.tip_height(surface, rho, theta);
+            let concavity = nose.concavity(surface);
+            let tip = |rho: f64, theta: f64| nose.tip_height(surface, concavity, rho, theta);
             crate::path::hcaa::spiral(outer_radius_mm, st, surface, &tip, progress)
         }
         Sampling::SpaceSpiral {
@@ -175,7 +176,8 @@ impl ToolPath {
 
     /// The one-way tip height over (ρ, θ) ([`NoseCompensator::tip_height`]).
     pub fn tip_height(&self, rho: f64, theta: f64) -> Result<f64, UndefinedError> {
-        self.nose.tip_height(self.surface(), rho, theta)
+        self.nose
+            .tip_height(self.surface(), self.concavity, rho, theta)
     }
 
     /// The path's first point (a slice's display copy counts revolutions from its angle).

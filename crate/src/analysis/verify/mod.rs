@@ -504,7 +504,7 @@ impl<'t> Run<'t> {
         let (s, c) = q.theta.sin_cos();
         let contact = tp
             .nose()
-            .compensate(tp.surface(), q.rho, c, s)
+            .compensate_from(tp.surface(), tp.concavity(), q.rho, c, s, None)
             .map_err(|source| VerifyError::Surface {
                 line: at.line,
                 source,

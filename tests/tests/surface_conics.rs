@@ -16,6 +16,8 @@ use common::{
     field_error, local,
 };
 use proptest::prelude::*;
+use spiralcam::job::Job;
+use spiralcam::plan::Planner;
 use spiralcam::surface::{
     Asphere, AsphereSpec, Biconic, BiconicSpec, OffAxisConic, OffAxisConicSpec, PartDisc, Surface,
     SurfaceSpec, TiltedFlat, TiltedFlatSpec, Toroid, ToroidSpec,
@@ -809,7 +811,11 @@ fn planned_paths_touch_without_cutting() {
             r#"{"type":"tilted_flat","tilt_deg":3,"azimuth_deg":-40}"#,
         ),
     ];
+    // Every family here proves the nose height concave (`Surface::section_bounds`): these
+    // paths come from the concave shortcut.
     for j in &jobs {
+        let planner = Planner::new(&Job::from_json(j).unwrap()).unwrap();
+        assert!(planner.path().concavity().is_some(), "{j}");
         let n = check_planned_path(j, &none, 4000);
         assert!(n > 100, "{n} points");
     }

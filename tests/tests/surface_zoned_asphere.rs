@@ -11,6 +11,8 @@ use common::{
     check_derivatives, check_example_jobs, check_planned_path, config, field_error, small_job,
 };
 use proptest::prelude::*;
+use spiralcam::job::Job;
+use spiralcam::plan::Planner;
 use spiralcam::surface::zoned_asphere::ZoneSpec;
 use spiralcam::surface::{Line, Surface, ZonedAsphere, ZonedAsphereSpec};
 use std::f64::consts::PI;
@@ -290,6 +292,18 @@ fn planned_paths_touch_without_cutting() {
         3.0,
     );
     assert!(check_planned_path(&stepped, &kinks, 2000) > 200);
+    // Ridges only (the slope drops outwards at both boundaries): the section bounds hold, so
+    // the contacts come from the concave shortcut, the boundaries probed.
+    let ridges = small_job(
+        "zoned-ridges",
+        r#"{"type":"zoned_asphere","zones":[{"outer_radius_mm":0.6,"radius_mm":40,"conic":-1},
+            {"outer_radius_mm":1.1,"radius_mm":50,"conic":-1,"offset_mm":0.0009},
+            {"radius_mm":60,"conic":-1,"offset_mm":0.002916666666666667}]}"#,
+        3.0,
+    );
+    let planner = Planner::new(&Job::from_json(&ridges).unwrap()).unwrap();
+    assert!(planner.path().concavity().is_some());
+    assert!(check_planned_path(&ridges, &kinks, 2000) > 200);
 }
 
 #[test]

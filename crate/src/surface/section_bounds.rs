@@ -7,8 +7,10 @@
 //!
 //! A family gives bounds only where it can prove them from its formula (even and odd aspheres,
 //! the concave lens array, sinusoidal grid and tilted flat, XY polynomial, Zernike and Chebyshev
-//! surfaces on an even asphere, [`crate::surface::polynomial::Bivariate::section_bounds`]);
-//! every other family gives none and is searched in full.
+//! surfaces on an even asphere, [`crate::surface::polynomial::Bivariate::section_bounds`];
+//! Forbes' Q surfaces, [`crate::surface::q_section_bounds`]; the biconic, toroid and off-axis
+//! conic; the zoned asphere whose boundaries are ridges); every other family gives none and is
+//! searched in full.
 
 /// Upper bounds on a surface's radial sections over a disc (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -25,7 +25,7 @@
 //! Rx), and with Rx = Ry a sphere.
 
 use super::biconic::{describe_radius, section_curvatures};
-use super::{Local, PartDisc, Surface, UndefinedError};
+use super::{Local, PartDisc, SectionBounds, Surface, UndefinedError};
 use crate::field::{FieldError, finite};
 use serde::{Deserialize, Serialize};
 
@@ -188,6 +188,50 @@ impl Surface for Toroid {
         f64::INFINITY
     }
 
+    /// A toroid is a surface of revolution about its axis, so its principal curvatures are the
+    /// profile's `z_y″/(1 + z_y′²)^(3/2)` (along the meridians, copies of the profile) and at
+    /// most `1/|ρ|` in size along the parallel circles, `ρ = Rx − z_y` their radius. A section's
+    /// curvature is `vᵀHv = κₙ·√(1 + |∇z|²)·(1 + (∇z·v)²) ≤ κ·(1 + G²)^(3/2)` (κₙ the normal
+    /// curvature along v, at most the larger principal curvature's size κ; G ≥ |∇z|), and its
+    /// slope at most G, with `∇z = (e·x, z_y′)/w`, e = 1/ρ, `w = √(1 − e²x²)`. Over the disc,
+    /// |z_y|, |z_y′| and |z_y″| are bounded at |y| = T term by term (each grows with |y|; the
+    /// conic's curvature `|cy|/w_y³` is largest at its least w_y), so `|ρ| ≥ ρ₀ = |Rx| − max|z_y|`
+    /// and `G ≤ √(T²/ρ₀² + S_y²)/√(1 − T²/ρ₀²)`; none where ρ₀ ≤ T. A cylinder (cx = 0) has no
+    /// parallel curvature and e = 0.
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        let t = radius_mm.abs();
+        let q = 1.0 - self.py * t * t;
+        if q.is_nan() || q <= 0.0 {
+            return None;
+        }
+        let (c, w) = (self.cy.abs(), q.sqrt());
+        let w_least = if self.py > 0.0 { w } else { 1.0 };
+        let [mut z0, mut z1, mut z2] = [c * t * t / (1.0 + w), c * t / w, c / w_least.powi(3)];
+        for (i, a) in self.alpha.iter().enumerate() {
+            let n = (2 * i + 2) as f64;
+            let power = t.powi(2 * i as i32);
+            z0 += a.abs() * power * t * t;
+            z1 += n * a.abs() * power * t;
+            z2 += n * (n - 1.0) * a.abs() * power;
+        }
+        let (ex, parallel) = if self.cx == 0.0 {
+            (0.0, 0.0)
+        } else {
+            let rho = 1.0 / self.cx.abs() - z0;
+            if rho.is_nan() || rho <= t {
+                return None;
+            }
+            (t / rho, 1.0 / rho)
+        };
+        let g = (ex * ex + z1 * z1).sqrt() / (1.0 - ex * ex).sqrt();
+        let kappa = z2.max(parallel);
+        SectionBounds {
+            max_slope: 0.0,
+            max_curvature: 0.0,
+        }
+        .plus(g, kappa * (1.0 + g * g).powf(1.5))
+    }
+
     fn describe(&self) -> String {
         let sweep = if self.cx == 0.0 {
             "extruded along X (a cylinder with its axis parallel to X)".to_string()
@@ -222,6 +266,34 @@ mod tests {
 
     fn toroid(spec: ToroidSpec) -> Result<Toroid, FieldError> {
         Toroid::new(&spec, PartDisc::centred(5.0))
+    }
+
+    #[test]
+    fn section_bounds_hold_on_dense_sections() {
+        use crate::surface::section_bounds::assert_bounds_hold;
+        let spec = |rx: f64, ry: f64, ky: f64, alpha: Vec<f64>| ToroidSpec {
+            radius_x_mm: (rx != 0.0).then_some(rx),
+            curvature_x_per_mm: (rx == 0.0).then_some(0.0),
+            radius_y_mm: Some(ry),
+            conic_y: ky,
+            profile_coefficients: alpha,
+            ..Default::default()
+        };
+        for (s, radius) in [
+            (spec(60.0, 35.0, -0.5, vec![]), 8.0),
+            (spec(-25.0, 18.0, 0.0, vec![1e-3, -2e-5]), 5.0),
+            (spec(30.0, -40.0, -3.0, vec![0.0, 1e-5]), 6.0),
+            (spec(0.0, 20.0, 0.5, vec![]), 6.0),
+        ] {
+            assert_bounds_hold(&toroid(s).unwrap(), radius, 72, 4000);
+        }
+        // The rotation axis within the disc's reach: none.
+        assert!(
+            toroid(spec(6.0, 30.0, 0.0, vec![]))
+                .unwrap()
+                .section_bounds(6.0)
+                .is_none()
+        );
     }
 
     #[test]

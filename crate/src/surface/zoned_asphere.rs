@@ -16,7 +16,7 @@
 //! Each zone's conic must stay defined over its zone (its rim outside its outer radius), checked
 //! when the surface is built.
 
-use super::{Asphere, AsphereSpec, Line, Local, Surface, UndefinedError};
+use super::{Asphere, AsphereSpec, Line, Local, SectionBounds, Surface, UndefinedError};
 use crate::field::{FieldError, finite, positive};
 use serde::{Deserialize, Serialize};
 
@@ -26,6 +26,9 @@ pub const MAX_ZONES: usize = 100;
 pub const STEP_WARNING_MM: f64 = 1e-6;
 /// A slope jump at a boundary above this is a warning, rad (1 µrad).
 pub const SLOPE_WARNING: f64 = 1e-6;
+/// The largest step at a boundary that still gives section bounds, mm (0.1 pm: offsets written
+/// to the rounding of their digits; the nose height's maximum is then found to within it).
+pub const MAX_BOUNDED_STEP_MM: f64 = 1e-13;
 
 /// One zone: its outer radius and its asphere. Give exactly one of `radius_mm` and
 /// `curvature_per_mm`.
@@ -261,6 +264,32 @@ impl Surface for ZonedAsphere {
         shortest
     }
 
+    /// The largest of the zones' asphere bounds, each over the disc to its outer radius (or T):
+    /// a zone's sections are its asphere's. Only where every boundary inside T is continuous (a
+    /// step of at most [`MAX_BOUNDED_STEP_MM`], the rounding of the offsets) and a ridge (the
+    /// radial slope dropping outwards, `slope_jump ≤ 0`); a valley or a step gives none.
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        let t = radius_mm.abs();
+        let inside = self.boundaries.iter().take_while(|b| b.radius_mm < t);
+        if inside
+            .clone()
+            .any(|b| b.step_mm.abs() > MAX_BOUNDED_STEP_MM || b.slope_jump > 0.0)
+        {
+            return None;
+        }
+        let mut bounds = SectionBounds {
+            max_slope: 0.0,
+            max_curvature: f64::NEG_INFINITY,
+        };
+        for (k, zone) in self.zones.iter().enumerate().take(inside.count() + 1) {
+            let reach = self.outer.get(k).map_or(t, |&r| r.min(t));
+            let b = zone.asphere.section_bounds(reach)?;
+            bounds.max_slope = bounds.max_slope.max(b.max_slope);
+            bounds.max_curvature = bounds.max_curvature.max(b.max_curvature);
+        }
+        Some(bounds)
+    }
+
     /// The crossings of the line with every boundary circle where the value or slope jumps.
     fn slope_kinks(&self, line: Line, t0: f64, t1: f64, out: &mut Vec<f64>) {
         // |p(t)|² = t² + 2bt + c with b = p₀·u, c = |p₀|²; roots −b ± √(b² − c + r²).
@@ -360,6 +389,44 @@ mod tests {
             offset_mm: offset,
             ..Default::default()
         }
+    }
+
+    #[test]
+    fn section_bounds_need_ridges_and_hold_on_dense_sections() {
+        use crate::surface::section_bounds::assert_bounds_hold;
+        // Parabolas of R 40, 50, 60 meeting in value at 0.6 and 1.1 mm: the slope drops
+        // outwards at both (0.015 → 0.012, 0.022 → 0.0183), ridges.
+        let ridges = ZonedAsphere::new(&ZonedAsphereSpec {
+            zones: vec![
+                zone_spec(Some(0.6), 40.0, -1.0, 0.0),
+                zone_spec(Some(1.1), 50.0, -1.0, 0.0009),
+                zone_spec(None, 60.0, -1.0, 0.013 - 1.21 / 120.0),
+            ],
+        })
+        .unwrap();
+        let (b, ..) = assert_bounds_hold(&ridges, 3.0, 16, 20_000);
+        // The outer zone's own bounds over the whole disc are the largest here.
+        assert!(b.max_slope <= 3.0 / 60.0 * (1.0 + 1e-8), "{b:?}");
+        // The same zones with the middle one flatter inside: a valley at 0.6 mm, none.
+        let valley = ZonedAsphere::new(&ZonedAsphereSpec {
+            zones: vec![
+                zone_spec(Some(0.6), 60.0, -1.0, 0.0),
+                zone_spec(None, 40.0, -1.0, 0.36 / 120.0 - 0.36 / 80.0),
+            ],
+        })
+        .unwrap();
+        assert!(valley.section_bounds(3.0).is_none());
+        // ... but a disc inside the first zone has its bounds.
+        assert!(valley.section_bounds(0.5).is_some());
+        // A step: none.
+        let step = ZonedAsphere::new(&ZonedAsphereSpec {
+            zones: vec![
+                zone_spec(Some(0.6), 40.0, -1.0, 0.0),
+                zone_spec(None, 50.0, -1.0, 0.0019),
+            ],
+        })
+        .unwrap();
+        assert!(step.section_bounds(3.0).is_none());
     }
 
     #[test]

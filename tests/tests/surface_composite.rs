@@ -7,6 +7,8 @@ mod common;
 
 use common::{check_derivatives, check_planned_path, config};
 use proptest::prelude::*;
+use spiralcam::job::Job;
+use spiralcam::plan::Planner;
 use spiralcam::surface::{Line, Surface, SurfaceSpec};
 use std::f64::consts::TAU;
 
@@ -143,6 +145,39 @@ fn every_point_of_a_planned_path_over_placed_lenslets_touches_without_cutting() 
     // r = 0.1 mm, slopes ≤ 0.3, curvatures ≤ 0.5 /mm); check_planned_path asserts it.
     let n = check_planned_path(&job, &kinks, 2000);
     assert_eq!(n, 30 * 72 + 1);
+}
+
+/// Concave lenslets turned by 20° (not decentred) and a turned sinusoid on an asphere: every part
+/// bounds its sections, so the sum does and the path comes from the concave shortcut, the rims
+/// (ridges) probed.
+#[test]
+fn a_composite_of_bounded_parts_is_planned_by_the_shortcut_and_touches() {
+    let surface = r#"{"type":"composite",
+    "base":{"type":"asphere","radius_mm":30},
+    "terms":[
+      {"surface":{"type":"lens_array","lens_radius_mm":2.0,"aperture_mm":0.8,"pitch_mm":1.0,
+                  "grid":"hexagonal","form":"concave"}, "rotation_deg":20},
+      {"surface":{"type":"sinusoid","amplitude_mm":0.0005,"wavelength_x_mm":1.5,
+                  "wavelength_y_mm":1.5}, "rotation_deg":-35}]}"#;
+    let job = format!(
+        r#"{{"name":"composite-bounded","part":{{"diameter_mm":3}},"surface":{surface},
+        "tool":{{"nose_radius_mm":0.1,"included_angle_deg":100}},"machine":{{"spindle_rpm":500}},
+        "strategy":{{"feed_mm_per_rev":0.05,"sampling":{{"type":"constant_angle","points_per_rev":72}}}}}}"#
+    );
+    let planner = Planner::new(&Job::from_json(&job).unwrap()).unwrap();
+    assert!(planner.path().concavity().is_some());
+    let spec: SurfaceSpec = serde_json::from_str(surface).unwrap();
+    let built = spec.build(1.5).unwrap();
+    let kinks = |c: f64, s: f64| {
+        let mut out = Vec::new();
+        built.slope_kinks(Line::radial(c, s), -1.5, 1.5, &mut out);
+        out
+    };
+    assert_eq!(check_planned_path(&job, &kinks, 2000), 30 * 72 + 1);
+    // Decentred, the lenslets' bounds no longer hold along lines through the axis: none.
+    let decentred = surface.replace(r#""rotation_deg":20"#, r#""decenter_x_mm":0.3"#);
+    let spec: SurfaceSpec = serde_json::from_str(&decentred).unwrap();
+    assert!(spec.build(1.5).unwrap().section_bounds(1.5).is_none());
 }
 
 /// The slope kinks of a placed lens array are those of the unplaced one along the moved line.

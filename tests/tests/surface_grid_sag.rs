@@ -21,6 +21,8 @@ mod common;
 
 use common::{check_derivatives, check_example_jobs, check_planned_path, config, example_job};
 use proptest::prelude::*;
+use spiralcam::job::Job;
+use spiralcam::plan::Planner;
 use spiralcam::surface::grid_sag::Derivatives;
 use spiralcam::surface::grid_sag::dat::GridData;
 use spiralcam::surface::grid_sag::export::{GridExtent, sample};
@@ -393,6 +395,10 @@ fn a_planned_path_touches_without_cutting() {
         "machine": {"spindle_rpm": 300},
         "strategy": {"feed_mm_per_rev": 0.15, "sampling": {"type": "constant_angle", "points_per_rev": 24}}
     });
+    // The grid's cells bound its sections (`Surface::section_bounds`): the contacts come from
+    // the concave shortcut, held to the same check.
+    let planner = Planner::new(&Job::from_json(&job.to_string()).unwrap()).unwrap();
+    assert!(planner.path().concavity().is_some());
     let none = |_: f64, _: f64| Vec::new();
     assert!(check_planned_path(&job.to_string(), &none, 2000) > 200);
 }

@@ -7,7 +7,7 @@
 //! `Rᵀ(o − d) + t·Rᵀu` with the same parameter, so slope kinks carry over unchanged. The sum's
 //! derivatives are the sums of the parts'; its feature length is the shortest of the parts'.
 
-use super::{Line, Local, PartDisc, Surface, SurfaceSpec, UndefinedError};
+use super::{Line, Local, PartDisc, SectionBounds, Surface, SurfaceSpec, UndefinedError};
 use crate::field::{FieldError, finite};
 use serde::{Deserialize, Serialize};
 
@@ -112,6 +112,15 @@ impl Surface for Placed {
         self.inner.slope_kinks(Line { x0, y0, c, s }, t0, t1, out);
     }
 
+    /// The term's own where it is not decentred (turned about the axis, its radial sections
+    /// are its own at θ − φ); none where it is.
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        if self.dx != 0.0 || self.dy != 0.0 {
+            return None;
+        }
+        self.inner.section_bounds(radius_mm)
+    }
+
     fn warnings(&self) -> Vec<String> {
         self.inner.warnings()
     }
@@ -201,6 +210,15 @@ impl Surface for Composite {
         for p in &self.parts {
             p.slope_kinks(line, t0, t1, out);
         }
+    }
+
+    /// The sum of the parts' bounds ([`SectionBounds::and`]) where every part gives them: the
+    /// sum's slope kinks are its parts', each a ridge, and a ridge plus a smooth or ridged
+    /// section is a ridge.
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        let mut parts = self.parts.iter().map(|p| p.section_bounds(radius_mm));
+        let first = parts.next()??;
+        parts.try_fold(first, |sum, b| sum.and(b?))
     }
 
     fn warnings(&self) -> Vec<String> {

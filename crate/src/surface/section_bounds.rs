@@ -9,7 +9,8 @@
 //! the concave lens array, sinusoidal grid and tilted flat, XY polynomial, Zernike and Chebyshev
 //! surfaces on an even asphere, [`crate::surface::polynomial::Bivariate::section_bounds`];
 //! Forbes' Q surfaces, [`crate::surface::q_section_bounds`]; the biconic, toroid and off-axis
-//! conic; the zoned asphere whose boundaries are ridges); every other family gives none and is
+//! conic; the zoned asphere whose boundaries are ridges; the grid sag, from its cells; composites
+//! of these with no term decentred, [`SectionBounds::and`]); every other family gives none and is
 //! searched in full.
 
 /// Upper bounds on a surface's radial sections over a disc (see the module docs).
@@ -23,12 +24,22 @@ pub struct SectionBounds {
 
 impl SectionBounds {
     /// These bounds with a term's added (a sum's section): `slope` ≥ the term's |f′| and
-    /// `curvature` ≥ its |f″|, each with a relative margin far above the sums' rounding; `None`
-    /// where not finite.
+    /// `curvature` ≥ its f″ ([`SectionBounds::and`]).
     pub fn plus(self, slope: f64, curvature: f64) -> Option<SectionBounds> {
+        self.and(SectionBounds {
+            max_slope: slope,
+            max_curvature: curvature,
+        })
+    }
+
+    /// The bounds of the sum of two surfaces: the slope bounds add, and so do the upward
+    /// curvature bounds (each is an upper bound of its part's f″), with a relative margin far
+    /// above the sums' rounding; `None` where not finite.
+    pub fn and(self, other: SectionBounds) -> Option<SectionBounds> {
+        let (a, b) = (self.max_curvature, other.max_curvature);
         let sum = SectionBounds {
-            max_slope: self.max_slope + slope * (1.0 + 1e-9),
-            max_curvature: self.max_curvature + curvature * (1.0 + 1e-9),
+            max_slope: (self.max_slope + other.max_slope) * (1.0 + 1e-9),
+            max_curvature: a + b + 1e-9 * (a.abs() + b.abs()),
         };
         (sum.max_slope.is_finite() && sum.max_curvature.is_finite()).then_some(sum)
     }

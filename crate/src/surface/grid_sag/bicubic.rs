@@ -74,6 +74,22 @@ pub fn eval(a: &[f64; 16], u: f64, v: f64) -> [f64; 6] {
     ]
 }
 
+/// Bounds of `[|p_u|, |p_v|, |p_uu|, |p_uv|, |p_vv|]` over the cell (u, v ∈ [0, 1], where every
+/// |uᵏvˡ| ≤ 1) of the patch with coefficients `a`: `Σ k·|aₖₗ|`, `Σ l·|aₖₗ|`, `Σ k(k − 1)·|aₖₗ|`,
+/// `Σ kl·|aₖₗ|`, `Σ l(l − 1)·|aₖₗ|`.
+pub fn derivative_bounds(a: &[f64; 16]) -> [f64; 5] {
+    let mut b = [0.0; 5];
+    for (i, c) in a.iter().enumerate() {
+        let (k, l, c) = ((i / 4) as f64, (i % 4) as f64, c.abs());
+        b[0] += k * c;
+        b[1] += l * c;
+        b[2] += k * (k - 1.0) * c;
+        b[3] += k * l * c;
+        b[4] += l * (l - 1.0) * c;
+    }
+    b
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -278,7 +278,7 @@ impl Surface for GridSag {
     }
 
     /// The base's bounds plus the grid's over every cell that meets the disc
-    /// ([`bicubic::derivative_bounds`], in mm through the spacings): a section's slope is at most
+    /// (`bicubic::derivative_bounds`, in mm through the spacings): a section's slope is at most
     /// |∇g| and its curvature `dᵀHd` at most the larger eigenvalue of the matrix of the Hessian's
     /// bounds, whatever the line's direction and offset (so the grid's decentre does not
     /// matter). C¹ across cells: no kinks (the Hessian's jumps at the edges leave F′ falling).

@@ -126,21 +126,38 @@ const LENSLETS: &str = r#"{"type":"composite",
       {"surface":{"type":"sinusoid","amplitude_mm":0.0005,"wavelength_x_mm":1.5,
                   "wavelength_y_mm":1.5}, "rotation_deg":-35}]}"#;
 
-#[test]
-fn every_point_of_a_planned_path_over_placed_lenslets_touches_without_cutting() {
-    let job = format!(
-        r#"{{"name":"composite-path","part":{{"diameter_mm":3}},"surface":{LENSLETS},
+/// A small job on `surface` (Ø3 mm, r 0.1 mm, 30 revolutions of 72 points).
+fn path_job(name: &str, surface: &str) -> String {
+    format!(
+        r#"{{"name":"{name}","part":{{"diameter_mm":3}},"surface":{surface},
         "tool":{{"nose_radius_mm":0.1,"included_angle_deg":100}},"machine":{{"spindle_rpm":500}},
         "strategy":{{"feed_mm_per_rev":0.05,"sampling":{{"type":"constant_angle","points_per_rev":72}}}}}}"#
-    );
-    let spec: SurfaceSpec = serde_json::from_str(LENSLETS).unwrap();
-    let surface = spec.build(1.5).unwrap();
-    // The rims of the placed lenslets along each radial section, where the slope jumps.
-    let kinks = |c: f64, s: f64| {
+    )
+}
+
+/// The surface of a spec, on the Ø3 mm part.
+fn build(spec: &str) -> Box<dyn Surface> {
+    serde_json::from_str::<SurfaceSpec>(spec)
+        .unwrap()
+        .build(1.5)
+        .unwrap()
+}
+
+/// The slope kinks of `surface` along the radial section at (cos θ, sin θ), over the part.
+fn radial_kinks(surface: &dyn Surface) -> impl Fn(f64, f64) -> Vec<f64> + '_ {
+    move |c, s| {
         let mut out = Vec::new();
         surface.slope_kinks(Line::radial(c, s), -1.5, 1.5, &mut out);
         out
-    };
+    }
+}
+
+#[test]
+fn every_point_of_a_planned_path_over_placed_lenslets_touches_without_cutting() {
+    let job = path_job("composite-path", LENSLETS);
+    let surface = build(LENSLETS);
+    // The rims of the placed lenslets along each radial section, where the slope jumps.
+    let kinks = radial_kinks(surface.as_ref());
     // 2000 steps of the 100° arc keep the sampling bound K·Δa²/8 below 1e-8 mm (K ≈ 0.2 mm for
     // r = 0.1 mm, slopes ≤ 0.3, curvatures ≤ 0.5 /mm); check_planned_path asserts it.
     let n = check_planned_path(&job, &kinks, 2000);
@@ -159,25 +176,17 @@ fn a_composite_of_bounded_parts_is_planned_by_the_shortcut_and_touches() {
                   "grid":"hexagonal","form":"concave"}, "rotation_deg":20},
       {"surface":{"type":"sinusoid","amplitude_mm":0.0005,"wavelength_x_mm":1.5,
                   "wavelength_y_mm":1.5}, "rotation_deg":-35}]}"#;
-    let job = format!(
-        r#"{{"name":"composite-bounded","part":{{"diameter_mm":3}},"surface":{surface},
-        "tool":{{"nose_radius_mm":0.1,"included_angle_deg":100}},"machine":{{"spindle_rpm":500}},
-        "strategy":{{"feed_mm_per_rev":0.05,"sampling":{{"type":"constant_angle","points_per_rev":72}}}}}}"#
-    );
+    let job = path_job("composite-bounded", surface);
     let planner = Planner::new(&Job::from_json(&job).unwrap()).unwrap();
     assert!(planner.path().concavity().is_some());
-    let spec: SurfaceSpec = serde_json::from_str(surface).unwrap();
-    let built = spec.build(1.5).unwrap();
-    let kinks = |c: f64, s: f64| {
-        let mut out = Vec::new();
-        built.slope_kinks(Line::radial(c, s), -1.5, 1.5, &mut out);
-        out
-    };
-    assert_eq!(check_planned_path(&job, &kinks, 2000), 30 * 72 + 1);
+    let built = build(surface);
+    assert_eq!(
+        check_planned_path(&job, &radial_kinks(built.as_ref()), 2000),
+        30 * 72 + 1
+    );
     // Decentred, the lenslets' bounds no longer hold along lines through the axis: none.
     let decentred = surface.replace(r#""rotation_deg":20"#, r#""decenter_x_mm":0.3"#);
-    let spec: SurfaceSpec = serde_json::from_str(&decentred).unwrap();
-    assert!(spec.build(1.5).unwrap().section_bounds(1.5).is_none());
+    assert!(build(&decentred).section_bounds(1.5).is_none());
 }
 
 /// The slope kinks of a placed lens array are those of the unplaced one along the moved line.

@@ -118,6 +118,12 @@ pub fn concave_zones(
     let unmeasured_zones = found.len().saturating_sub(MAX_MEASURED_ZONES);
     found.truncate(MAX_MEASURED_ZONES);
     let mut zones = vec![None; found.len()];
+    // The nose's certificate on the surface, proven once for every zone's envelopes.
+    let concavity = if found.is_empty() {
+        None
+    } else {
+        nose.concavity(surface)
+    };
     let total = (ANGLES + found.len()) as u64;
     let batch = 4 * workers();
     for (k, part) in zones.chunks_mut(batch).enumerate() {
@@ -125,7 +131,15 @@ pub fn concave_zones(
         fill_chunks(part, |start, out| {
             for (j, slot) in out.iter_mut().enumerate() {
                 let cells = &found[first + start + j];
-                *slot = Some(measure(surface, nose, &grid, cells, delta, part_radius_mm)?);
+                *slot = Some(measure(
+                    surface,
+                    nose,
+                    concavity,
+                    &grid,
+                    cells,
+                    delta,
+                    part_radius_mm,
+                )?);
             }
             Ok::<(), UndefinedError>(())
         })?;
@@ -300,10 +314,11 @@ fn components(grid: &[Option<Flag>], cols: usize) -> Vec<Vec<(usize, usize)>> {
     out
 }
 
-/// Extent, sharpness and depth of one zone.
+/// Extent, sharpness and depth of one zone (`concavity`: the nose's certificate on the surface).
 fn measure(
     surface: &dyn Surface,
     nose: &NoseCompensator,
+    concavity: Option<f64>,
     grid: &[Option<Flag>],
     cells: &[(usize, usize)],
     delta: f64,
@@ -338,7 +353,7 @@ fn measure(
     let mut deepest = (0.0, Location::new(0.0, 0.0));
     for i in reps {
         let theta = TAU * i as f64 / ANGLES as f64;
-        let section = Envelope::new(surface, nose, theta, part_radius);
+        let section = Envelope::new(surface, nose, concavity, theta, part_radius);
         let row: Vec<(usize, Flag)> = cells
             .iter()
             .filter(|c| c.0 == i)
@@ -428,6 +443,7 @@ impl<'a> Envelope<'a> {
     fn new(
         surface: &'a dyn Surface,
         nose: &'a NoseCompensator,
+        concavity: Option<f64>,
         theta: f64,
         part_radius: f64,
     ) -> Self {
@@ -436,7 +452,7 @@ impl<'a> Envelope<'a> {
         Self {
             surface,
             nose,
-            concavity: nose.concavity(surface),
+            concavity,
             c,
             s,
             half_width,

@@ -811,9 +811,17 @@ fn planned_paths_touch_without_cutting() {
             r#"{"type":"tilted_flat","tilt_deg":3,"azimuth_deg":-40}"#,
         ),
     ];
+    // Each cut turned over too (`part.cut`, the frame a lens's front surface is cut in): the
+    // design's lower curvature bound becomes the turned surface's upper one.
+    let turned = jobs.clone().map(|j| {
+        j.replace(
+            r#""part":{"diameter_mm":"#,
+            r#""part":{"cut":{"piece":"optic","frame":"turned"},"diameter_mm":"#,
+        )
+    });
     // Every family here proves the nose height concave (`Surface::section_bounds`): these
     // paths come from the concave shortcut.
-    for j in &jobs {
+    for j in jobs.iter().chain(&turned) {
         let planner = Planner::new(&Job::from_json(j).unwrap()).unwrap();
         assert!(planner.path().concavity().is_some(), "{j}");
         let n = check_planned_path(j, &none, 4000);

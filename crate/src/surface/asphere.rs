@@ -221,8 +221,8 @@ impl Surface for Asphere {
         if q.is_nan() || q <= 0.0 {
             return None;
         }
-        let mut slope = (self.c * t / q.sqrt()).abs();
-        let mut curvature = self.c.max(self.c / (q * q.sqrt()));
+        let conic = self.c / (q * q.sqrt());
+        let (mut slope, mut curvature) = (0.0, 0.0);
         // t^(n−2) for n = 4, 6, …: t², t⁴, …
         let mut t_n2 = t * t;
         for (i, a) in self.a.iter().enumerate() {
@@ -231,12 +231,13 @@ impl Surface for Asphere {
             curvature += n * (n - 1.0) * a.abs() * t_n2;
             t_n2 *= t * t;
         }
-        // Rounding: a relative margin far above the few operations' error.
-        let b = SectionBounds {
-            max_slope: slope * (1.0 + 1e-9),
-            max_curvature: curvature + 1e-9 * curvature.abs(),
-        };
-        (b.max_slope.is_finite() && b.max_curvature.is_finite()).then_some(b)
+        SectionBounds {
+            max_slope: (self.c * t / q.sqrt()).abs(),
+            max_curvature: self.c.max(conic),
+            min_curvature: self.c.min(conic),
+            has_ridges: false,
+        }
+        .plus(slope, curvature)
     }
 
     fn describe(&self) -> String {

@@ -180,8 +180,9 @@ impl Surface for Biconic {
     /// `A = c·t²` and `P = p·t²`, `c = cx·cos²θ + cy·sin²θ`, `p = px·cos²θ + py·sin²θ`, so
     /// `f = c·t²/(1 + w)`, `f′ = c·t/w`, `f″ = c/w³` with `w = √(1 − p·t²)` (from
     /// `f = c(1 − w)/p`). c and p are convex combinations of their X and Y values, and w is
-    /// least at |t| = T, so `|f′| ≤ max(|cx|, |cy|)·T/w₀` and `f″ ≤ max(cx, cy, 0)/w₀³` with
-    /// `w₀ = √(1 − max(px, py, 0)·T²)`; none where w₀ is not real (the rim inside the disc).
+    /// least at |t| = T, so `|f′| ≤ max(|cx|, |cy|)·T/w₀` and
+    /// `min(cx, cy, 0)/w₀³ ≤ f″ ≤ max(cx, cy, 0)/w₀³` with `w₀ = √(1 − max(px, py, 0)·T²)`;
+    /// none where w₀ is not real (the rim inside the disc).
     fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
         let t = radius_mm.abs();
         let q = 1.0 - self.px.max(self.py).max(0.0) * t * t;
@@ -189,14 +190,12 @@ impl Surface for Biconic {
             return None;
         }
         let w = q.sqrt();
-        SectionBounds {
-            max_slope: 0.0,
-            max_curvature: 0.0,
-        }
-        .plus(
-            self.cx.abs().max(self.cy.abs()) * t / w,
-            self.cx.max(self.cy).max(0.0) / (q * w),
-        )
+        SectionBounds::FLAT.and(SectionBounds {
+            max_slope: self.cx.abs().max(self.cy.abs()) * t / w,
+            max_curvature: self.cx.max(self.cy).max(0.0) / (q * w),
+            min_curvature: self.cx.min(self.cy).min(0.0) / (q * w),
+            has_ridges: false,
+        })
     }
 
     fn describe(&self) -> String {

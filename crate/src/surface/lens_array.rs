@@ -267,6 +267,9 @@ impl Surface for LensArray {
         Some(SectionBounds {
             max_slope: self.half_aperture / w * (1.0 + 1e-9),
             max_curvature: big * big / (w * w * w) * (1.0 + 1e-9),
+            // Bowls (every section's f″ ≥ 0 in a bowl) and a flat land, with ridges at the rims.
+            min_curvature: 0.0,
+            has_ridges: true,
         })
     }
 

@@ -157,7 +157,13 @@ impl Surface for OddAsphere {
                 curvature += n * (n - 1.0) * a * r.powi(i as i32 - 1);
             }
         }
-        self.conic.section_bounds(radius_mm)?.plus(slope, curvature)
+        let apex = self.beta1() != 0.0;
+        Some(
+            self.conic
+                .section_bounds(radius_mm)?
+                .plus(slope, curvature)?
+                .with_ridges(apex),
+        )
     }
 
     fn describe(&self) -> String {

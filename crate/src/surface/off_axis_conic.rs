@@ -127,17 +127,17 @@ impl Surface for OffAxisConic {
     }
 
     /// The parent's bounds over the disc of radius d + T about its axis (which holds the part):
-    /// a section's curvature is `uᵀHu` for the parent's Hessian H, at most its larger
-    /// eigenvalue, `p″` or `p′/ρ` (the mean of p″ over [0, ρ]), both within the parent's
-    /// sections' bound; its slope is the parent's gradient less the removed tilt, at most the
+    /// a section's curvature is `uᵀHu` for the parent's Hessian H, between its eigenvalues
+    /// `p″` and `p′/ρ` (the mean of p″ over [0, ρ]), both within the parent's sections'
+    /// bounds; its slope is the parent's gradient less the removed tilt, at most the
     /// parent's slope bound plus |tilt|.
     fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
         let parent = self.parent.section_bounds(self.d + radius_mm.abs())?;
         SectionBounds {
-            max_slope: 0.0,
-            max_curvature: parent.max_curvature,
+            max_slope: parent.max_slope + self.tilt.0.hypot(self.tilt.1),
+            ..parent
         }
-        .plus(parent.max_slope + self.tilt.0.hypot(self.tilt.1), 0.0)
+        .plus(0.0, 0.0)
     }
 
     fn describe(&self) -> String {

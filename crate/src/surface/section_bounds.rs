@@ -1,8 +1,10 @@
 //! Bounds on a surface's radial sections over a disc about the spindle axis: the largest slope
-//! |f′| and the largest upward curvature f″ of `t ↦ f(t·cos θ, t·sin θ)` for |t| ≤ R and every
-//! θ, and whether every slope kink there is a ridge (the slope drops across it). The one-way
-//! compensation ([`crate::tool::NoseCompensator`]) reads them to prove that the height of the
-//! nose over the arc is concave, so that its one local maximum is the global one (see
+//! |f′| and the largest and least curvature f″ of `t ↦ f(t·cos θ, t·sin θ)` for |t| ≤ R and
+//! every θ, given only where every slope kink there is a ridge (the slope drops across it), and
+//! whether there are any (a surface turned over keeps its bounds, its curvature's swapped and
+//! negated, only without them: [`SectionBounds::turned`]). The one-way compensation
+//! ([`crate::tool::NoseCompensator`]) reads them to prove that the height of the nose over the
+//! arc is concave, so that its one local maximum is the global one (see
 //! [`SectionBounds::nose_height_concavity`]).
 //!
 //! A family gives bounds only where it can prove them from its formula (even and odd aspheres,
@@ -13,35 +15,74 @@
 //! of these with no term decentred, [`SectionBounds::and`]); every other family gives none and is
 //! searched in full.
 
-/// Upper bounds on a surface's radial sections over a disc (see the module docs).
+/// Bounds on a surface's radial sections over a disc (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SectionBounds {
     /// An upper bound of |f′| over the disc.
     pub max_slope: f64,
     /// An upper bound of f″ over the disc (1/mm; may be negative).
     pub max_curvature: f64,
+    /// A lower bound of f″ over the disc (1/mm; may be positive): what the upward curvature of
+    /// the surface turned over is bounded by ([`SectionBounds::turned`]).
+    pub min_curvature: f64,
+    /// Whether the sections may have slope kinks in the disc (every one a ridge).
+    pub has_ridges: bool,
 }
 
 impl SectionBounds {
-    /// These bounds with a term's added (a sum's section): `slope` ≥ the term's |f′| and
-    /// `curvature` ≥ its f″ ([`SectionBounds::and`]).
+    /// A flat section's bounds: slope and curvature 0, no kinks.
+    pub const FLAT: SectionBounds = SectionBounds {
+        max_slope: 0.0,
+        max_curvature: 0.0,
+        min_curvature: 0.0,
+        has_ridges: false,
+    };
+
+    /// These bounds with a smooth term's added (a sum's section): `slope` ≥ the term's |f′| and
+    /// `curvature` ≥ its |f″| ([`SectionBounds::and`]).
     pub fn plus(self, slope: f64, curvature: f64) -> Option<SectionBounds> {
         self.and(SectionBounds {
             max_slope: slope,
             max_curvature: curvature,
+            min_curvature: -curvature,
+            has_ridges: false,
         })
     }
 
-    /// The bounds of the sum of two surfaces: the slope bounds add, and so do the upward
-    /// curvature bounds (each is an upper bound of its part's f″), with a relative margin far
-    /// above the sums' rounding; `None` where not finite.
+    /// The bounds of the sum of two surfaces: the slope bounds add, and so do the curvature
+    /// bounds (each bounds its part's f″), with a relative margin far above the sums' rounding;
+    /// the sum's kinks are its parts' (a ridge plus a smooth or ridged section is a ridge);
+    /// `None` where not finite.
     pub fn and(self, other: SectionBounds) -> Option<SectionBounds> {
         let (a, b) = (self.max_curvature, other.max_curvature);
+        let (c, d) = (self.min_curvature, other.min_curvature);
         let sum = SectionBounds {
             max_slope: (self.max_slope + other.max_slope) * (1.0 + 1e-9),
             max_curvature: a + b + 1e-9 * (a.abs() + b.abs()),
+            min_curvature: c + d - 1e-9 * (c.abs() + d.abs()),
+            has_ridges: self.has_ridges || other.has_ridges,
         };
-        (sum.max_slope.is_finite() && sum.max_curvature.is_finite()).then_some(sum)
+        let finite = [sum.max_slope, sum.max_curvature, sum.min_curvature];
+        finite.iter().all(|v| v.is_finite()).then_some(sum)
+    }
+
+    /// These bounds with `ridges` marking slope kinks (ridges) in the disc.
+    pub fn with_ridges(self, ridges: bool) -> SectionBounds {
+        SectionBounds {
+            has_ridges: self.has_ridges || ridges,
+            ..self
+        }
+    }
+
+    /// The bounds of the surface turned over (`f ↦ −f` along every section, as
+    /// [`crate::surface::Turned`] does): the slopes keep their bound, the curvature bounds swap
+    /// and change sign; `None` with kinks, whose ridges would be valleys.
+    pub fn turned(self) -> Option<SectionBounds> {
+        (!self.has_ridges).then_some(SectionBounds {
+            max_curvature: -self.min_curvature,
+            min_curvature: -self.max_curvature,
+            ..self
+        })
     }
 
     /// A lower bound m > 0 of −F″ for the nose height `F(a) = f(ρ_s + r·sin a) + r·cos a` over
@@ -60,17 +101,17 @@ impl SectionBounds {
     }
 }
 
-/// The largest |f′| and f″ of the radial sections of `surface` sampled at `angles` angles
-/// (from 0) and `samples` + 1 points of `t ∈ [−radius, radius]` each: what a family's bounds
-/// must cover, found by brute force (for their tests).
+/// The largest |f′|, the largest f″ and the least f″ of the radial sections of `surface` sampled
+/// at `angles` angles (from 0) and `samples` + 1 points of `t ∈ [−radius, radius]` each: what a
+/// family's bounds must cover, found by brute force (for their tests).
 #[cfg(test)]
 fn sampled_extremes(
     surface: &dyn super::Surface,
     radius: f64,
     angles: usize,
     samples: usize,
-) -> (f64, f64) {
-    let (mut slope, mut curvature) = (0.0f64, f64::NEG_INFINITY);
+) -> (f64, f64, f64) {
+    let (mut slope, mut curvature, mut least) = (0.0f64, f64::NEG_INFINITY, f64::INFINITY);
     for k in 0..angles {
         let (s, c) = (std::f64::consts::TAU * k as f64 / angles as f64).sin_cos();
         for i in 0..=samples {
@@ -78,9 +119,10 @@ fn sampled_extremes(
             let l = surface.local(t * c, t * s).unwrap().radial(c, s);
             slope = slope.max(l.slope.abs());
             curvature = curvature.max(l.curvature_term);
+            least = least.min(l.curvature_term);
         }
     }
-    (slope, curvature)
+    (slope, curvature, least)
 }
 
 /// `surface`'s bounds over the disc of `radius`, asserted to cover its sections sampled as
@@ -93,10 +135,10 @@ pub(crate) fn assert_bounds_hold(
     samples: usize,
 ) -> (SectionBounds, f64, f64) {
     let b = surface.section_bounds(radius).expect("section bounds");
-    let (slope, curvature) = sampled_extremes(surface, radius, angles, samples);
+    let (slope, curvature, least) = sampled_extremes(surface, radius, angles, samples);
     assert!(
-        slope <= b.max_slope && curvature <= b.max_curvature,
-        "{}: {b:?} against the sampled slope {slope} and curvature {curvature}",
+        slope <= b.max_slope && curvature <= b.max_curvature && least >= b.min_curvature,
+        "{}: {b:?} against the sampled slope {slope} and curvature {least} … {curvature}",
         surface.describe()
     );
     (b, slope, curvature)
@@ -108,10 +150,7 @@ mod tests {
 
     #[test]
     fn a_flat_section_is_concave_for_any_angle_below_90_degrees() {
-        let b = SectionBounds {
-            max_slope: 0.0,
-            max_curvature: 0.0,
-        };
+        let b = SectionBounds::FLAT;
         assert!(b.nose_height_concavity(1.0, 89f64.to_radians()).is_some());
         assert!(b.nose_height_concavity(1.0, 90f64.to_radians()).is_none());
     }
@@ -120,8 +159,8 @@ mod tests {
     fn the_nose_term_outweighs_a_bowl_no_tighter_than_the_nose() {
         // A bowl of radius 2r: r·K = 0.5, flat: concave; one of radius r·1.05: not proven.
         let bowl = |k: f64| SectionBounds {
-            max_slope: 0.0,
             max_curvature: k,
+            ..SectionBounds::FLAT
         };
         let m = bowl(0.5).nose_height_concavity(1.0, 0.5).unwrap();
         assert!((m - 0.5f64.cos() * 0.5).abs() < 1e-15, "{m}");
@@ -129,12 +168,32 @@ mod tests {
         // Steep flanks: slope 1 at 50° fails (tan 50° > 0.9).
         let steep = SectionBounds {
             max_slope: 1.0,
-            max_curvature: 0.0,
+            ..SectionBounds::FLAT
         };
         assert!(
             steep
                 .nose_height_concavity(0.5, 50f64.to_radians())
                 .is_none()
         );
+    }
+
+    #[test]
+    fn a_turned_surface_swaps_and_negates_its_curvature_bounds_and_loses_its_ridges() {
+        let b = SectionBounds {
+            max_slope: 0.3,
+            max_curvature: 0.02,
+            min_curvature: -0.05,
+            has_ridges: false,
+        };
+        let t = b.turned().unwrap();
+        assert_eq!(
+            (t.max_slope, t.max_curvature, t.min_curvature),
+            (0.3, 0.05, -0.02)
+        );
+        assert_eq!(t.turned(), Some(b));
+        assert!(b.with_ridges(true).turned().is_none());
+        // A sum's kinks are its parts'.
+        let sum = b.and(SectionBounds::FLAT.with_ridges(true)).unwrap();
+        assert!(sum.has_ridges && sum.min_curvature < -0.05 && sum.max_curvature > 0.02);
     }
 }

@@ -84,11 +84,7 @@ impl Surface for Sinusoid {
     fn section_bounds(&self, _radius_mm: f64) -> Option<SectionBounds> {
         let k = self.kx.max(self.ky);
         let slope = self.a.abs() * k;
-        // Rounding: a relative margin far above the few operations' error.
-        Some(SectionBounds {
-            max_slope: slope * (1.0 + 1e-9),
-            max_curvature: slope * k * (1.0 + 1e-9),
-        })
+        SectionBounds::FLAT.plus(slope, slope * k)
     }
 
     fn describe(&self) -> String {

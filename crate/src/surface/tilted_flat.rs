@@ -81,7 +81,7 @@ impl Surface for TiltedFlat {
     fn section_bounds(&self, _radius_mm: f64) -> Option<SectionBounds> {
         Some(SectionBounds {
             max_slope: self.gx.hypot(self.gy) * (1.0 + 1e-12),
-            max_curvature: 0.0,
+            ..SectionBounds::FLAT
         })
     }
 

@@ -225,11 +225,7 @@ impl Surface for Toroid {
         };
         let g = (ex * ex + z1 * z1).sqrt() / (1.0 - ex * ex).sqrt();
         let kappa = z2.max(parallel);
-        SectionBounds {
-            max_slope: 0.0,
-            max_curvature: 0.0,
-        }
-        .plus(g, kappa * (1.0 + g * g).powf(1.5))
+        SectionBounds::FLAT.plus(g, kappa * (1.0 + g * g).powf(1.5))
     }
 
     fn describe(&self) -> String {

@@ -10,7 +10,7 @@
 //! A line `(x₀, y₀) + t·(c, s)` is the design's line `(−x₀, y₀) + t·(−c, s)` with the same
 //! parameter, so slope kinks carry over unchanged.
 
-use super::{Line, Local, Surface, UndefinedError};
+use super::{Line, Local, SectionBounds, Surface, UndefinedError};
 
 /// A surface turned 180° about Y.
 #[derive(Debug)]
@@ -59,6 +59,13 @@ impl Surface for Turned {
             s: line.s,
         };
         self.inner.slope_kinks(design, t0, t1, out);
+    }
+
+    /// The design's bounds turned over ([`SectionBounds::turned`]): the turned section at θ is
+    /// the design's at π − θ negated, `g(t) = −f(−t·cos θ, t·sin θ)`; none where the design has
+    /// kinks (its ridges are the turned surface's valleys).
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        self.inner.section_bounds(radius_mm)?.turned()
     }
 
     fn describe(&self) -> String {
@@ -117,6 +124,43 @@ mod tests {
         // A mirror (z → −z alone) would give the odd terms the other sign.
         let mirror = -sphere(x, y) - 0.002 * x.powi(3) - 0.001 * x * y * y;
         assert!((t.sag(x, y).unwrap() - mirror).abs() > 1e-3);
+    }
+
+    #[test]
+    fn section_bounds_are_the_designs_turned_over_and_ridges_give_none() {
+        use crate::surface::section_bounds::assert_bounds_hold;
+        // A convex and a concave asphere, the odd freeform, a biconic: the turned surface's
+        // sections against its bounds (the design's upward curvature becomes its downward).
+        let designs: Vec<Box<dyn Surface>> = vec![
+            Box::new(crate::surface::Asphere::sphere(40.0).unwrap()),
+            Box::new(crate::surface::Asphere::sphere(-25.0).unwrap()),
+            Box::new(freeform()),
+            Box::new(
+                crate::surface::Biconic::new(
+                    &crate::surface::BiconicSpec {
+                        radius_x_mm: Some(30.0),
+                        radius_y_mm: Some(-45.0),
+                        conic_x: -0.5,
+                        ..Default::default()
+                    },
+                    PartDisc::centred(4.0),
+                )
+                .unwrap(),
+            ),
+        ];
+        for design in designs {
+            let b = design.section_bounds(4.0).unwrap();
+            let turned = Turned::new(design);
+            let (t, ..) = assert_bounds_hold(&turned, 4.0, 36, 4000);
+            assert_eq!(
+                (t.max_curvature, t.min_curvature),
+                (-b.min_curvature, -b.max_curvature)
+            );
+        }
+        // Concave lenslets' rims are ridges: turned over they are valleys, no bounds.
+        let array = LensArray::new(&LensArraySpec::paper004(), PartDisc::centred(3.0)).unwrap();
+        assert!(array.section_bounds(3.0).is_some());
+        assert!(Turned::new(Box::new(array)).section_bounds(3.0).is_none());
     }
 
     #[test]

@@ -280,12 +280,15 @@ impl Surface for ZonedAsphere {
         let mut bounds = SectionBounds {
             max_slope: 0.0,
             max_curvature: f64::NEG_INFINITY,
+            min_curvature: f64::INFINITY,
+            has_ridges: inside.clone().any(|b| b.is_kink()),
         };
         for (k, zone) in self.zones.iter().enumerate().take(inside.count() + 1) {
             let reach = self.outer.get(k).map_or(t, |&r| r.min(t));
             let b = zone.asphere.section_bounds(reach)?;
             bounds.max_slope = bounds.max_slope.max(b.max_slope);
             bounds.max_curvature = bounds.max_curvature.max(b.max_curvature);
+            bounds.min_curvature = bounds.min_curvature.min(b.min_curvature);
         }
         Some(bounds)
     }

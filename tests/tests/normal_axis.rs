@@ -13,6 +13,7 @@ use common::{check_derivatives, check_planned_path, config, local, random_xy_pol
 use proptest::prelude::*;
 use spiralcam::job::Job;
 use spiralcam::path::space_spiral::survey;
+use spiralcam::plan::Planner;
 use spiralcam::surface::{Line, Surface};
 
 /// A job around `surface` (JSON) on a part of radius `radius` with the axis at `at`.
@@ -243,6 +244,23 @@ fn tilted_lens_array_plans_gouge_free() {
         out
     };
     assert!(check_planned_path(&json, &kinks, 4000) > 2000);
+}
+
+/// An off-axis paraboloid segment and a sphere seen along their normals: the design's bounds
+/// over a disc carry over to the tilted frame (`Surface::section_bounds` of the reframed
+/// surface), so the path comes from the concave shortcut; every point touches within 0.1 nm.
+#[test]
+fn tilted_smooth_designs_plan_by_the_shortcut_and_touch() {
+    let none = |_: f64, _: f64| Vec::new();
+    let paraboloid = r#"{"type":"off_axis_conic","parent":{"radius_mm":30,"conic":-1},"off_axis_distance_mm":8}"#;
+    for json in [
+        job_json(paraboloid, 2.0, [0.0, 0.0]),
+        job_json(&off_axis_sphere(-25.0, 0.0), 2.0, [3.0, -1.0]),
+    ] {
+        let planner = Planner::new(&Job::from_json(&json).unwrap()).unwrap();
+        assert!(planner.path().concavity().is_some(), "{json}");
+        assert!(check_planned_path(&json, &none, 4000) > 2000);
+    }
 }
 
 /// About Z the off-axis sphere segment is tilted (max α ≈ 17°, not of quasi-revolution);

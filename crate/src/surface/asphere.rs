@@ -240,6 +240,13 @@ impl Surface for Asphere {
         .plus(slope, curvature)
     }
 
+    /// Its section bounds: a surface of revolution's gradient is `p′(ρ)` along the radius,
+    /// and its Hessian's eigenvalues are `p″(ρ)` and `p′(ρ)/ρ`, the mean of p″ over [0, ρ]
+    /// (p′(0) = 0), both within the sections' curvature bounds.
+    fn disc_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        self.section_bounds(radius_mm)
+    }
+
     fn describe(&self) -> String {
         format!("even asphere {}", self.shape())
     }

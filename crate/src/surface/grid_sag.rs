@@ -314,6 +314,11 @@ impl Surface for GridSag {
         self.base.section_bounds(t)?.plus(slope, curvature)
     }
 
+    /// Its section bounds, which hold for any line (the cells' and the base's).
+    fn disc_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        self.section_bounds(radius_mm)
+    }
+
     fn describe(&self) -> String {
         let g = &self.grid;
         let derivatives = match self.derivatives {

@@ -288,6 +288,16 @@ pub trait Surface: Send + Sync + std::fmt::Debug {
         None
     }
 
+    /// Bounds over the disc of radius `radius_mm` about the axis on every line, whatever its
+    /// direction and offset: the gradient's size, and the Hessian's eigenvalues (so every
+    /// section's curvature lies between them); they are also [`Surface::section_bounds`]. What
+    /// a surface seen along a tilted axis ([`crate::surface::Reframed`]) needs; `None` by
+    /// default.
+    fn disc_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        let _ = radius_mm;
+        None
+    }
+
     /// One line restating the definition, for NC headers and reports.
     fn describe(&self) -> String;
 

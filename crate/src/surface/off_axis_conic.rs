@@ -140,6 +140,12 @@ impl Surface for OffAxisConic {
         .plus(0.0, 0.0)
     }
 
+    /// Its section bounds, which hold for any line (the parent's gradient and Hessian bound
+    /// them, whatever the direction).
+    fn disc_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        self.section_bounds(radius_mm)
+    }
+
     fn describe(&self) -> String {
         format!(
             "off-axis segment of the {} at d {} mm, clocking {}°{}",

@@ -14,7 +14,8 @@
 //! every t lies within T/(2K) of one, and for a polynomial q of degree ≤ n Markov brothers'
 //! inequality bounds its slope on [0, T] by `(2n²/T)·max|q|`, so `max|q| ≤ M + (n²/K)·max|q|`,
 //! `max|q| ≤ M/(1 − n²/K)` with M the largest sampled |q|. K = 16n² + 64 leaves the bounds within
-//! 1/15 of the extremes; n is at most 2·30 + 30 + 2, so at most 130 000 samples a sum, once a path.
+//! 1/15 of the extremes; n is at most 30 + 2·30 (Q₂D's m, n ≤ 30), so at most 130 000 samples
+//! a sum, once a path.
 //!
 //! **Along the sphere's normal.** With `g = (1 − c²t²)^(−1/2)`, `g′ = c²t·g³` and
 //! `g″ = c²g³ + 3c⁴t²g⁵` grow with |t| (their largest on |t| ≤ T are at T), and

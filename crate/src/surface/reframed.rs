@@ -26,7 +26,7 @@
 //! for gouges densely. Evaluation costs a Newton solve (3–6 design evaluations): a tilted
 //! lens array plans about 12 times slower than the untilted one, a smooth design about 4.
 
-use super::{Line, Local, Surface, UndefinedError};
+use super::{Line, Local, SectionBounds, Surface, UndefinedError};
 
 /// The smallest cosine allowed between the design's normal and the spindle axis: steeper than
 /// about 89.4° to the axis the design is not a graph over the new plane.
@@ -293,6 +293,37 @@ impl Surface for Reframed {
         self.inner.warnings()
     }
 
+    /// From the design's [`Surface::disc_bounds`] about its axis over `|P| + 2T` (P the point
+    /// on the spindle axis). Within that disc the design's normal leans at most `atan S` from
+    /// its Z and so at most `ψ = atan S + τ` from the spindle axis (τ the axis's tilt), so
+    /// `G = tan ψ` bounds the new frame's slope; a new-frame point within T of the axis lies
+    /// within `T + G·T·sin τ ≤ 2T` of P in the design's XY when `G·sin τ ≤ 1` (asked). A
+    /// section's curvature is `a·H·a/(N·e₃)` with `|a|² = 1 + g_d² ≤ 1 + G²` and
+    /// `N·e₃ ≥ cos ψ`, so it lies within the design's eigenvalue bounds times `(1 + G²)^(3/2)`.
+    /// None where the design gives none, has kinks, or ψ reaches 86°.
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        let t = radius_mm.abs();
+        let tilt = self.e3[2].clamp(-1.0, 1.0).acos();
+        let design = self
+            .inner
+            .disc_bounds(self.at[0].hypot(self.at[1]) + 2.0 * t)?;
+        let psi = design.max_slope.atan() + tilt;
+        if design.has_ridges || psi.is_nan() || psi >= 86f64.to_radians() {
+            return None;
+        }
+        let g = psi.tan();
+        if g * tilt.sin() > 1.0 {
+            return None;
+        }
+        let stretch = (1.0 + g * g).powf(1.5);
+        SectionBounds::FLAT.and(SectionBounds {
+            max_slope: g,
+            max_curvature: design.max_curvature.max(0.0) * stretch,
+            min_curvature: design.min_curvature.min(0.0) * stretch,
+            has_ridges: false,
+        })
+    }
+
     fn describe(&self) -> String {
         format!(
             "{}, on a spindle axis along its normal at ({}, {}) mm (z {:.6} mm): tilted {:.6}° \
@@ -304,5 +335,38 @@ impl Surface for Reframed {
             self.tilt_deg(),
             self.azimuth_deg()
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::surface::section_bounds::assert_bounds_hold;
+    use crate::surface::{Asphere, AsphereSpec, LensArray, LensArraySpec, PartDisc};
+
+    #[test]
+    fn section_bounds_hold_on_the_tilted_axis() {
+        let asphere = |r: f64, k: f64| -> Box<dyn Surface> {
+            Box::new(
+                Asphere::new(&AsphereSpec {
+                    radius_mm: Some(r),
+                    conic: k,
+                    ..Default::default()
+                })
+                .unwrap(),
+            )
+        };
+        for (design, at, radius) in [
+            (asphere(40.0, -1.0), [6.0, 2.0], 3.0),
+            (asphere(-30.0, 0.5), [-4.0, 3.0], 2.5),
+            (asphere(25.0, 0.0), [0.0, 0.0], 3.0),
+        ] {
+            let s = Reframed::new(design, at[0], at[1]).unwrap();
+            assert_bounds_hold(&s, radius, 36, 2000);
+        }
+        // Lenslets give no bounds over a disc (their rims): none.
+        let array = LensArray::new(&LensArraySpec::paper004(), PartDisc::centred(3.0)).unwrap();
+        let tilted = Reframed::new(Box::new(array), 0.3, 0.2).unwrap();
+        assert!(tilted.section_bounds(1.0).is_none());
     }
 }

@@ -85,6 +85,11 @@ impl Surface for TiltedFlat {
         })
     }
 
+    /// Its section bounds, which hold for any line.
+    fn disc_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        self.section_bounds(radius_mm)
+    }
+
     fn describe(&self) -> String {
         format!(
             "tilted flat: tilt {}°, rising fastest towards azimuth {}°",

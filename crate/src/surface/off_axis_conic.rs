@@ -132,12 +132,9 @@ impl Surface for OffAxisConic {
     /// bounds; its slope is the parent's gradient less the removed tilt, at most the
     /// parent's slope bound plus |tilt|.
     fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
-        let parent = self.parent.section_bounds(self.d + radius_mm.abs())?;
-        SectionBounds {
-            max_slope: parent.max_slope + self.tilt.0.hypot(self.tilt.1),
-            ..parent
-        }
-        .plus(0.0, 0.0)
+        self.parent
+            .section_bounds(self.d + radius_mm.abs())?
+            .plus(self.tilt.0.hypot(self.tilt.1), 0.0)
     }
 
     /// Its section bounds, which hold for any line (the parent's gradient and Hessian bound

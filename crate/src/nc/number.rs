@@ -187,6 +187,33 @@ mod tests {
     }
 
     #[test]
+    fn scaled_text_is_the_integer_with_its_point_placed() {
+        // Against std's integer formatting with the point inserted: every digit count of the
+        // magnitude, both signs, every number of decimals.
+        let mut buf = b"G1 X".to_vec();
+        for decimals in 0..=MAX_DECIMALS {
+            let mut mag = 0i64;
+            for k in 0..19 {
+                for units in [mag, -mag, mag + 7, -(mag + 7)] {
+                    let digits = units.unsigned_abs().to_string();
+                    let digits = format!("{digits:0>width$}", width = decimals as usize + 1);
+                    let (int, frac) = digits.split_at(digits.len() - decimals as usize);
+                    let sign = if units < 0 { "-" } else { "" };
+                    let point = if decimals > 0 { "." } else { "" };
+                    buf.truncate(4);
+                    push_scaled(&mut buf, units, decimals);
+                    assert_eq!(
+                        String::from_utf8(buf[4..].to_vec()).unwrap(),
+                        format!("{sign}{int}{point}{frac}"),
+                        "{units} with {decimals} decimals"
+                    );
+                }
+                mag = mag * 10 + (k % 9 + 1);
+            }
+        }
+    }
+
+    #[test]
     fn the_rounding_is_f64_round_of_the_product_away_from_ties() {
         // Against the library's round over products spread across every magnitude written,
         // away from the near-ties the exact remainder decides (those: the test below).

@@ -19,8 +19,9 @@ use common::{check_derivatives, check_planned_path, config, example_job, local};
 use nurbs_nets::{Poly, add, clamped, mul, polynomial_net, scale, sphere, sphere_cap, uniform};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
+use spiralcam::job::Job;
 use spiralcam::plan::Planner;
-use spiralcam::surface::{Nurbs, NurbsSpec, PartDisc, Surface, SurfaceSpec};
+use spiralcam::surface::{Nurbs, NurbsSpec, PartDisc, SectionBounds, Surface, SurfaceSpec};
 
 /// Sag tolerance against closed forms, mm. The inversion stops at an XY residual of 1e-14 of
 /// the face's size (≈ 6e-14 mm here), which moves the sag by at most |∇z|·6e-14 < 2e-14 mm;
@@ -109,35 +110,41 @@ fn rational_sphere_caps_match_the_sphere() {
     }
 }
 
-#[test]
-fn polynomial_paraboloids_match_the_closed_form() {
-    // z = (x² + y²)/(2R₂): the exact Hessian is diag(1/R₂, 1/R₂).
-    let r2 = 30.0;
-    let paraboloid = |x: f64, y: f64| {
-        [
-            (x * x + y * y) / (2.0 * r2),
-            x / r2,
-            y / r2,
-            1.0 / r2,
-            0.0,
-            1.0 / r2,
-        ]
-    };
-    let z_of = |x: &Poly, y: &Poly| scale(0.5 / r2, &add(&mul(x, x), &mul(y, y)));
-    // Bicubic, linear in (u, v) on uneven knots: x = u, y = 1.2v.
+/// The radius of the paraboloids of [`paraboloids`], mm.
+const R2: f64 = 30.0;
+
+/// z = (x² + y²)/(2R₂) two ways: bicubic, linear in (u, v) on uneven knots (x = u, y = 1.2v);
+/// degree 4, curved and sheared (x = u + 0.02uv + 0.01u², y = v − 0.02v² + 0.02u).
+fn paraboloids() -> Vec<NurbsSpec> {
+    let z_of = |x: &Poly, y: &Poly| scale(0.5 / R2, &add(&mul(x, x), &mul(y, y)));
     let (x, y): (Poly, Poly) = (vec![(1.0, 1, 0)], vec![(1.2, 0, 1)]);
     let z = z_of(&x, &y);
     let ku = clamped(3, -6.0, 6.0, &[-2.5, 0.5, 1.0, 4.0]);
     let kv = clamped(3, -5.0, 5.0, &[-1.0, 3.0]);
     let cubic = polynomial_net(3, 3, &ku, &kv, [&x, &y, &z]);
-    // Degree 4, curved and sheared: x = u + 0.02uv + 0.01u², y = v − 0.02v² + 0.02u.
     let x: Poly = vec![(1.0, 1, 0), (0.02, 1, 1), (0.01, 2, 0)];
     let y: Poly = vec![(1.0, 0, 1), (-0.02, 0, 2), (0.02, 1, 0)];
     let z = z_of(&x, &y);
     let k = clamped(4, -8.0, 8.0, &[-3.0, 2.0]);
     let quartic = polynomial_net(4, 4, &k, &k, [&x, &y, &z]);
+    vec![cubic, quartic]
+}
+
+#[test]
+fn polynomial_paraboloids_match_the_closed_form() {
+    // The exact Hessian is diag(1/R₂, 1/R₂).
+    let paraboloid = |x: f64, y: f64| {
+        [
+            (x * x + y * y) / (2.0 * R2),
+            x / R2,
+            y / R2,
+            1.0 / R2,
+            0.0,
+            1.0 / R2,
+        ]
+    };
     let points = disc_points(5.0, 2000);
-    for spec in [cubic, quartic] {
+    for spec in paraboloids() {
         let s = build(&spec, 5.0);
         check_closed_form(&s, &points, paraboloid);
     }
@@ -155,6 +162,52 @@ fn a_plane_on_a_curved_parametrisation_is_exact() {
     check_closed_form(&s, &disc_points(3.5, 500), |x, y| {
         [0.05 * x - 0.1 * y + 0.2, 0.05, -0.1, 0.0, 0.0, 0.0]
     });
+}
+
+/// The largest slope, and the least and largest Hessian eigenvalues, of `s` at `points`: what
+/// its disc bounds must hold (every section's curvature lies between the eigenvalues).
+fn sampled_extremes(s: &dyn Surface, points: &[(f64, f64)]) -> (f64, f64, f64) {
+    let (mut slope, mut least, mut most) = (0.0f64, f64::INFINITY, f64::NEG_INFINITY);
+    for &(x, y) in points {
+        let l = local(s, x, y);
+        let (mean, spread) = (0.5 * (l.zxx + l.zyy), (0.5 * (l.zxx - l.zyy)).hypot(l.zxy));
+        slope = slope.max(l.zx.hypot(l.zy));
+        least = least.min(mean - spread);
+        most = most.max(mean + spread);
+    }
+    (slope, least, most)
+}
+
+/// `s`'s disc bounds over `radius`, asserted to hold at dense points of the disc and to be
+/// its section bounds; with the sampled extremes (slope, least and largest eigenvalue).
+fn assert_disc_bounds_hold(s: &dyn Surface, radius: f64) -> (SectionBounds, (f64, f64, f64)) {
+    let b = s.disc_bounds(radius).expect("disc bounds");
+    assert_eq!(s.section_bounds(radius), Some(b));
+    let sampled = sampled_extremes(s, &disc_points(radius, 20_000));
+    let (slope, least, most) = sampled;
+    assert!(
+        slope <= b.max_slope && least >= b.min_curvature && most <= b.max_curvature,
+        "{b:?} against sampled {sampled:?}"
+    );
+    assert!(!b.has_ridges);
+    (b, sampled)
+}
+
+#[test]
+fn disc_bounds_hold_and_are_near_the_extremes_on_the_closed_forms() {
+    // The sphere caps (rational; slope 0.258 and eigenvalues 0.050 … 0.055 /mm over r 5) and the
+    // paraboloids (polynomial; slope 0.167, both eigenvalues 1/30 /mm): the bounds from the
+    // nets' Bézier pieces hold at 20 000 points of the disc and its rim, and stay within 10 % of
+    // the slope and of the eigenvalues (pieces are halved until their gradient varies by at most
+    // 0.01 + 2 % and their Hessian by 0.01 /mm + 5 %; on whole knot cells the bounds were 2–3
+    // times the extremes).
+    let nets = sphere_caps().into_iter().chain(paraboloids());
+    for spec in nets {
+        let (b, (slope, least, most)) = assert_disc_bounds_hold(&build(&spec, 5.0), 5.0);
+        assert!(b.max_slope <= 1.1 * slope, "{b:?} {slope}");
+        assert!(b.max_curvature <= 1.1 * most, "{b:?} {most}");
+        assert!(b.min_curvature >= 0.9 * least, "{b:?} {least}");
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -233,6 +286,26 @@ proptest! {
             let sag = local(&s, x, y).z;
             prop_assert!((sag - z).abs() <= 1e-13, "sag {sag} vs S_z {z}");
         }
+    }
+}
+
+proptest! {
+    // The bounds take about 0.4 s a net in a debug build: fewer cases than above.
+    #![proptest_config(config(8, SEED))]
+
+    #[test]
+    fn freeform_disc_bounds_hold(spec in freeform()) {
+        // Random bicubic nets (half of them rational) over the 5 mm disc: given, and holding at
+        // 2 000 points of it.
+        let s = build(&NurbsSpec { allow_uncovered: true, ..spec }, 5.0);
+        let b = s.disc_bounds(5.0);
+        prop_assert!(b.is_some());
+        let b = b.unwrap();
+        let (slope, least, most) = sampled_extremes(&s, &disc_points(5.0, 2000));
+        prop_assert!(
+            slope <= b.max_slope && least >= b.min_curvature && most <= b.max_curvature,
+            "{:?} against {} {} {}", b, slope, least, most
+        );
     }
 }
 
@@ -387,6 +460,10 @@ fn a_planned_freeform_path_touches_without_cutting() {
             "tool":{{"nose_radius_mm":0.1}},"machine":{{"spindle_rpm":500}},
             "strategy":{{"feed_mm_per_rev":0.1,"sampling":{{"type":"constant_angle","points_per_rev":24}}}}}}"#
     );
+    // The net bounds the sections (`Surface::section_bounds`): the contacts come from the
+    // concave shortcut, held to the same check.
+    let planner = Planner::new(&Job::from_json(&job).unwrap()).unwrap();
+    assert!(planner.path().concavity().is_some());
     // 2000 steps of the nose angle keep the sampling bound K·Δa²/8 near 1e-8 mm.
     let n = check_planned_path(&job, &|_, _| Vec::new(), 2000);
     assert_eq!(n, 145);

@@ -14,6 +14,7 @@ mod nurbs_nets;
 
 use common::{check_planned_path, example_job, local};
 use nurbs_nets::{clamped, polynomial_net, sphere, sphere_cap};
+use spiralcam::job::Job;
 use spiralcam::plan::Planner;
 use spiralcam::surface::DataFile;
 use spiralcam::surface::step_face::{FaceChoice, StepUnits};
@@ -505,6 +506,9 @@ fn a_planned_step_face_path_touches_without_cutting() {
             "tool":{{"nose_radius_mm":0.1,"included_angle_deg":110}},"machine":{{"spindle_rpm":500}},
             "strategy":{{"feed_mm_per_rev":0.1,"sampling":{{"type":"constant_angle","points_per_rev":24}}}}}}"#
     );
+    // The face's net bounds the sections: the concave shortcut, held to the same check.
+    let planner = Planner::new(&Job::from_json(&job).unwrap()).unwrap();
+    assert!(planner.path().concavity().is_some());
     let n = check_planned_path(&job, &|_, _| Vec::new(), 2000);
     assert_eq!(n, 145);
 }

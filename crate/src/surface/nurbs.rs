@@ -15,6 +15,10 @@
 //!   Hessian is `H = J⁻ᵀ·(∇²_uv S_z − z_x·∇²_uv S_x − z_y·∇²_uv S_y)·J⁻¹` (the same as
 //!   differentiating the inverse Jacobian, `∂(J⁻¹)/∂x = −J⁻¹·(∂J/∂x)·J⁻¹`): exact, no
 //!   differencing.
+//! - Bounds (`bounds.rs`): the height field's slope and the Hessian's eigenvalues over a disc,
+//!   from the Bézier nets of small pieces of the knot cells in interval arithmetic (the
+//!   derivative nets' convex hulls through the same chain rule), for the one-way
+//!   compensation's concave shortcut ([`Surface::section_bounds`], [`Surface::disc_bounds`]).
 //!
 //! The face must project one-to-one onto the XY plane: `det J` keeps one sign, away from zero
 //! (above 1e-9 of its largest value), over the whole face (checked on the grid when the surface
@@ -27,14 +31,16 @@
 //! net is given in those coordinates.
 
 pub(crate) mod basis;
+mod bounds;
 mod coverage;
 mod height;
+mod interval;
 mod inverse;
 mod patch;
 
 pub use basis::MAX_DEGREE;
 
-use super::{Local, PartDisc, Surface, UndefinedError};
+use super::{Local, PartDisc, SectionBounds, Surface, UndefinedError};
 use crate::field::{FieldError, finite};
 use inverse::{Fold, Inverse, Miss};
 use patch::Patch;
@@ -200,6 +206,15 @@ impl Surface for Nurbs {
 
     fn feature_length_mm(&self) -> f64 {
         self.feature
+    }
+
+    /// From the control net, cell by cell (`bounds.rs`); they hold on every line.
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        bounds::disc_bounds(&self.patch, radius_mm)
+    }
+
+    fn disc_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        bounds::disc_bounds(&self.patch, radius_mm)
     }
 
     fn describe(&self) -> String {

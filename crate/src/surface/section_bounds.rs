@@ -11,9 +11,10 @@
 //! the concave lens array, sinusoidal grid and tilted flat, XY polynomial, Zernike and Chebyshev
 //! surfaces on an even asphere, [`crate::surface::polynomial::Bivariate::section_bounds`];
 //! Forbes' Q surfaces, [`crate::surface::q_section_bounds`]; the biconic, toroid and off-axis
-//! conic; the zoned asphere whose boundaries are ridges; the grid sag, from its cells; composites
-//! of these with no term decentred, [`SectionBounds::and`]); every other family gives none and is
-//! searched in full.
+//! conic; the zoned asphere whose boundaries are ridges; the grid sag, from its cells; NURBS
+//! surfaces and STEP faces, from their control nets' Bézier pieces; composites of these with no
+//! term decentred, [`SectionBounds::and`]); every other family gives none and is searched in
+//! full.
 
 /// Bounds on a surface's radial sections over a disc (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]

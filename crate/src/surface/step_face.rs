@@ -23,7 +23,7 @@ mod part21;
 mod units;
 
 use super::nurbs::Nurbs;
-use super::{Local, PartDisc, Surface, UndefinedError};
+use super::{Local, PartDisc, SectionBounds, Surface, UndefinedError};
 use crate::field::{FieldError, finite};
 use crate::surface::DataFile;
 use part21::{Exchange, Instance};
@@ -164,6 +164,14 @@ impl Surface for StepFace {
 
     fn feature_length_mm(&self) -> f64 {
         self.nurbs.feature_length_mm()
+    }
+
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        self.nurbs.section_bounds(radius_mm)
+    }
+
+    fn disc_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        self.nurbs.disc_bounds(radius_mm)
     }
 
     fn describe(&self) -> String {

@@ -100,6 +100,11 @@ impl KnotVector {
         self.count
     }
 
+    /// The knots, `count + degree + 1` of them.
+    pub fn knots(&self) -> &[f64] {
+        &self.knots
+    }
+
     /// The parameter domain `[u_p, u_n]`.
     pub fn domain(&self) -> (f64, f64) {
         (self.knots[self.degree], self.knots[self.count])

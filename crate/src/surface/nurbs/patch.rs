@@ -67,6 +67,11 @@ impl Patch {
         &self.v
     }
 
+    /// The homogeneous control points `(w·x, w·y, w·z, w)`, point (i, j) at `i·cols + j`.
+    pub fn homogeneous_net(&self) -> &[[f64; 4]] {
+        &self.pw
+    }
+
     /// Whether any weight differs from 1.
     pub fn rational(&self) -> bool {
         self.rational

@@ -22,7 +22,8 @@ use common::{
     random_asphere, random_sinusoid, random_xy_polynomial,
 };
 use proptest::prelude::*;
-use spiralcam::job::ToolSpec;
+use spiralcam::job::{Job, ToolSpec};
+use spiralcam::plan::Planner;
 use spiralcam::surface::{Surface, SurfaceSpec};
 use spiralcam::tool::NoseCompensator;
 use std::f64::consts::TAU;
@@ -388,6 +389,10 @@ fn every_point_of_a_planned_lens_array_path_touches_without_cutting() {
         lenslets: Some((cut_centres(pitch, true, a / 2.0, part_radius), a / 2.0)),
         smooth: false,
     };
+    // Convex lenslets bound their sections with valleys at the rims: the nose height is
+    // searched stretch by stretch between them (`Concavity::valleys`), held to the same check.
+    let planner = Planner::new(&Job::from_json(&job).unwrap()).unwrap();
+    assert!(planner.path().concavity().is_some_and(|c| c.valleys));
     check_path(&job, &case);
 }
 

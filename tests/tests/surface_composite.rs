@@ -164,9 +164,9 @@ fn every_point_of_a_planned_path_over_placed_lenslets_touches_without_cutting() 
     assert_eq!(n, 30 * 72 + 1);
 }
 
-/// Concave lenslets turned by 20° (not decentred) and a turned sinusoid on an asphere: every part
-/// bounds its sections, so the sum does and the path comes from the concave shortcut, the rims
-/// (ridges) probed.
+/// Concave lenslets turned by 20° and a turned sinusoid on an asphere: every part bounds its
+/// sections, so the sum does and the path comes from the concave shortcut, the rims (ridges)
+/// probed; then the lenslets decentred, and convex.
 #[test]
 fn a_composite_of_bounded_parts_is_planned_by_the_shortcut_and_touches() {
     let surface = r#"{"type":"composite",
@@ -184,9 +184,23 @@ fn a_composite_of_bounded_parts_is_planned_by_the_shortcut_and_touches() {
         check_planned_path(&job, &radial_kinks(built.as_ref()), 2000),
         30 * 72 + 1
     );
-    // Decentred, the lenslets' bounds no longer hold along lines through the axis: none.
+    // Decentred, the lenslets' sections through the axis are bounded by their bounds on any
+    // line (`Surface::disc_bounds`), the same for spheres wherever the line runs; convex, their
+    // rims are valleys and the stretches between them are searched apart. Both still touch.
     let decentred = surface.replace(r#""rotation_deg":20"#, r#""decenter_x_mm":0.3"#);
-    assert!(build(&decentred).section_bounds(1.5).is_none());
+    let placed = build(&decentred);
+    assert_eq!(placed.section_bounds(1.5), built.section_bounds(1.5));
+    let convex = decentred.replace("concave", "convex");
+    for (name, surface, valleys) in [("decentred", &decentred, false), ("convex", &convex, true)] {
+        let job = path_job(name, surface);
+        let planner = Planner::new(&Job::from_json(&job).unwrap()).unwrap();
+        assert_eq!(planner.path().concavity().map(|c| c.valleys), Some(valleys));
+        let built = build(surface);
+        assert_eq!(
+            check_planned_path(&job, &radial_kinks(built.as_ref()), 2000),
+            30 * 72 + 1
+        );
+    }
 }
 
 /// The slope kinks of a placed lens array are those of the unplaced one along the moved line.

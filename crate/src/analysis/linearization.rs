@@ -76,9 +76,9 @@ use crate::path::PathPoint;
 use crate::progress::PROGRESS_EVERY;
 use crate::raster::Raster;
 use crate::surface::{Local, Surface, UndefinedError};
-use crate::tool::NoseCompensator;
 use crate::tool::ToolPath;
 use crate::tool::WarmStart;
+use crate::tool::{Concavity, NoseCompensator};
 use serde::Serialize;
 
 /// Height, mm, below which the refinement of an extreme stops (see the module docs).
@@ -209,7 +209,7 @@ struct Context<'a> {
     surface: &'a dyn Surface,
     nose: &'a NoseCompensator,
     /// The path's certificate for the concave shortcut ([`NoseCompensator::concavity`]).
-    concavity: Option<f64>,
+    concavity: Option<Concavity>,
 }
 
 /// An error for a value that came out non-finite at (ρ, θ).

@@ -236,6 +236,7 @@ impl Surface for Asphere {
             max_curvature: self.c.max(conic),
             min_curvature: self.c.min(conic),
             has_ridges: false,
+            has_valleys: false,
         }
         .plus(slope, curvature)
     }

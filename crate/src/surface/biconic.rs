@@ -195,6 +195,7 @@ impl Surface for Biconic {
             max_curvature: self.cx.max(self.cy).max(0.0) / (q * w),
             min_curvature: self.cx.min(self.cy).min(0.0) / (q * w),
             has_ridges: false,
+            has_valleys: false,
         })
     }
 

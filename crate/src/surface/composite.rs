@@ -113,12 +113,19 @@ impl Surface for Placed {
     }
 
     /// The term's own where it is not decentred (turned about the axis, its radial sections
-    /// are its own at θ − φ); none where it is.
+    /// are its own at θ − φ); where it is, its [`Surface::disc_bounds`] over the disc moved
+    /// with it (radius + decentre), which hold on any line.
     fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
         if self.dx != 0.0 || self.dy != 0.0 {
-            return None;
+            return self.disc_bounds(radius_mm);
         }
         self.inner.section_bounds(radius_mm)
+    }
+
+    /// The term's disc bounds over the disc that holds the moved one (turning changes none).
+    fn disc_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        self.inner
+            .disc_bounds(radius_mm.abs() + self.dx.hypot(self.dy))
     }
 
     fn warnings(&self) -> Vec<String> {
@@ -217,6 +224,13 @@ impl Surface for Composite {
     /// section is a ridge.
     fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
         let mut parts = self.parts.iter().map(|p| p.section_bounds(radius_mm));
+        let first = parts.next()??;
+        parts.try_fold(first, |sum, b| sum.and(b?))
+    }
+
+    /// The sum of the parts' disc bounds, where every part gives them.
+    fn disc_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        let mut parts = self.parts.iter().map(|p| p.disc_bounds(radius_mm));
         let first = parts.next()??;
         parts.try_fold(first, |sum, b| sum.and(b?))
     }

@@ -254,23 +254,29 @@ impl Surface for LensArray {
         });
     }
 
-    /// Concave lenslets only: each is a bowl whose rim is a ridge (the slope drops from the
-    /// land's 0 into the bowl and from the bowl's wall back to 0). On a sphere of radius R,
-    /// |∇z| = ρ/w and every second directional derivative is at most R²/w³ (w = √(R² − ρ²)),
-    /// both largest at the rim (ρ = a/2); the land is flat. Convex lenslets (valleys at their
-    /// rims) have none.
+    /// On a sphere of radius R, |∇z| = ρ/w and every second directional derivative is at most
+    /// R²/w³ in size (w = √(R² − ρ²)), both largest at the rim (ρ = a/2); the land is flat.
+    /// Concave lenslets are bowls (f″ ≥ 0) whose rims are ridges (the slope drops from the
+    /// land's 0 into the bowl and from the bowl's wall back to 0); convex ones are bumps
+    /// (f″ ≤ 0) whose rims are valleys.
     fn section_bounds(&self, _radius_mm: f64) -> Option<SectionBounds> {
-        if self.spec.form == Form::Convex {
-            return None;
-        }
         let (big, w) = (self.spec.lens_radius_mm, self.rim_w);
+        let curvature = big * big / (w * w * w) * (1.0 + 1e-9);
+        let convex = self.spec.form == Form::Convex;
         Some(SectionBounds {
             max_slope: self.half_aperture / w * (1.0 + 1e-9),
-            max_curvature: big * big / (w * w * w) * (1.0 + 1e-9),
-            // Bowls (every section's f″ ≥ 0 in a bowl) and a flat land, with ridges at the rims.
-            min_curvature: 0.0,
-            has_ridges: true,
+            max_curvature: if convex { 0.0 } else { curvature },
+            min_curvature: if convex { -curvature } else { 0.0 },
+            has_ridges: !convex,
+            has_valleys: convex,
         })
+    }
+
+    /// The section bounds, which hold on any line: |∇z| = ρ/w and the sphere's Hessian has the
+    /// eigenvalues ±R²/w³ and ±1/w (R²/w³ the larger), and a concave rim is a ridge, a convex
+    /// one a valley, along any line that crosses it.
+    fn disc_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        self.section_bounds(radius_mm)
     }
 
     fn feature_length_mm(&self) -> f64 {
@@ -308,7 +314,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn section_bounds_hold_over_the_part_and_convex_arrays_have_none() {
+    fn section_bounds_hold_over_the_part_and_convex_arrays_have_valleys() {
         let l = LensArray::new(&LensArraySpec::paper004(), PartDisc::centred(5.0)).unwrap();
         let b = l.section_bounds(5.0).unwrap();
         let (mut slope, mut curv) = (0.0f64, 0.0f64);
@@ -332,7 +338,21 @@ mod tests {
             ..LensArraySpec::paper004()
         };
         let convex = LensArray::new(&convex, PartDisc::centred(5.0)).unwrap();
-        assert!(convex.section_bounds(5.0).is_none());
+        // Convex lenslets: the same slope, the curvature's size as the least, valleys.
+        let v = convex.section_bounds(5.0).unwrap();
+        assert_eq!((v.max_slope, v.max_curvature), (b.max_slope, 0.0));
+        assert_eq!(v.min_curvature, -b.max_curvature);
+        assert!(v.has_valleys && !v.has_ridges && b.has_ridges && !b.has_valleys);
+        let (mut least, mut most) = (0.0f64, f64::NEG_INFINITY);
+        for i in 0..200_000 {
+            let (t, theta) = (-5.0 + 10.0 * i as f64 / 200_000.0, 0.37 + 1e-4 * i as f64);
+            let (s, c) = f64::sin_cos(theta);
+            let r = convex.local(t * c, t * s).unwrap().radial(c, s);
+            least = least.min(r.curvature_term);
+            most = most.max(r.curvature_term);
+        }
+        assert!(least >= v.min_curvature && least < 0.95 * v.min_curvature);
+        assert!(most <= v.max_curvature, "{most}");
     }
 
     #[test]

@@ -308,7 +308,7 @@ impl Surface for Reframed {
             .inner
             .disc_bounds(self.at[0].hypot(self.at[1]) + 2.0 * t)?;
         let psi = design.max_slope.atan() + tilt;
-        if design.has_ridges || psi.is_nan() || psi >= 86f64.to_radians() {
+        if design.has_ridges || design.has_valleys || psi.is_nan() || psi >= 86f64.to_radians() {
             return None;
         }
         let g = psi.tan();
@@ -321,6 +321,7 @@ impl Surface for Reframed {
             max_curvature: design.max_curvature.max(0.0) * stretch,
             min_curvature: design.min_curvature.min(0.0) * stretch,
             has_ridges: false,
+            has_valleys: false,
         })
     }
 

@@ -1,20 +1,23 @@
 //! Bounds on a surface's radial sections over a disc about the spindle axis: the largest slope
 //! |f′| and the largest and least curvature f″ of `t ↦ f(t·cos θ, t·sin θ)` for |t| ≤ R and
-//! every θ, given only where every slope kink there is a ridge (the slope drops across it), and
-//! whether there are any (a surface turned over keeps its bounds, its curvature's swapped and
-//! negated, only without them: [`SectionBounds::turned`]). The one-way compensation
-//! ([`crate::tool::NoseCompensator`]) reads them to prove that the height of the nose over the
-//! arc is concave, so that its one local maximum is the global one (see
-//! [`SectionBounds::nose_height_concavity`]).
+//! every θ between the section's kinks, and whether it has kinks that are ridges (the slope
+//! drops across them) and kinks that are not (valleys, where the slope rises, or steps in
+//! value). The one-way compensation ([`crate::tool::NoseCompensator`]) reads them to prove
+//! that the height of the nose over the arc is concave (see
+//! [`SectionBounds::nose_height_concavity`]): across ridges too, so that its one local maximum
+//! is the global one; with valleys or steps, only between them, so that each stretch of the arc
+//! between them has one (a surface turned over keeps its bounds, its curvature's swapped and
+//! negated, its ridges becoming valleys: [`SectionBounds::turned`]).
 //!
 //! A family gives bounds only where it can prove them from its formula (even and odd aspheres,
-//! the concave lens array, sinusoidal grid and tilted flat, XY polynomial, Zernike and Chebyshev
+//! lens arrays, sinusoidal grid and tilted flat, XY polynomial, Zernike and Chebyshev
 //! surfaces on an even asphere, [`crate::surface::polynomial::Bivariate::section_bounds`];
 //! Forbes' Q surfaces, [`crate::surface::q_section_bounds`]; the biconic, toroid and off-axis
-//! conic; the zoned asphere whose boundaries are ridges; the grid sag, from its cells; NURBS
-//! surfaces and STEP faces, from their control nets' Bézier pieces; composites of these with no
-//! term decentred, [`SectionBounds::and`]); every other family gives none and is searched in
-//! full.
+//! conic; the zoned asphere; the grid sag, from its cells; NURBS surfaces and STEP faces, from
+//! their control nets' Bézier pieces; the compound eye, from its caps; composites of these,
+//! [`SectionBounds::and`], a decentred term by its bounds on every line,
+//! [`crate::surface::Surface::disc_bounds`]); the PAL and scattered data give none and are
+//! searched in full.
 
 /// Bounds on a surface's radial sections over a disc (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -26,8 +29,11 @@ pub struct SectionBounds {
     /// A lower bound of f″ over the disc (1/mm; may be positive): what the upward curvature of
     /// the surface turned over is bounded by ([`SectionBounds::turned`]).
     pub min_curvature: f64,
-    /// Whether the sections may have slope kinks in the disc (every one a ridge).
+    /// Whether the sections may have slope kinks in the disc that are ridges.
     pub has_ridges: bool,
+    /// Whether they may have kinks that are not ridges (valleys: the slope rises across them)
+    /// or steps in value: the nose height is then concave only between them.
+    pub has_valleys: bool,
 }
 
 impl SectionBounds {
@@ -37,6 +43,7 @@ impl SectionBounds {
         max_curvature: 0.0,
         min_curvature: 0.0,
         has_ridges: false,
+        has_valleys: false,
     };
 
     /// These bounds with a smooth term's added (a sum's section): `slope` ≥ the term's |f′| and
@@ -47,12 +54,14 @@ impl SectionBounds {
             max_curvature: curvature,
             min_curvature: -curvature,
             has_ridges: false,
+            has_valleys: false,
         })
     }
 
     /// The bounds of the sum of two surfaces: the slope bounds add, and so do the curvature
     /// bounds (each bounds its part's f″), with a relative margin far above the sums' rounding;
-    /// the sum's kinks are its parts' (a ridge plus a smooth or ridged section is a ridge);
+    /// the sum's kinks are its parts' (a ridge plus a smooth or ridged section is a ridge, a
+    /// valley or step anywhere stays one);
     /// `None` where not finite.
     pub fn and(self, other: SectionBounds) -> Option<SectionBounds> {
         let (a, b) = (self.max_curvature, other.max_curvature);
@@ -62,6 +71,7 @@ impl SectionBounds {
             max_curvature: a + b + 1e-9 * (a.abs() + b.abs()),
             min_curvature: c + d - 1e-9 * (c.abs() + d.abs()),
             has_ridges: self.has_ridges || other.has_ridges,
+            has_valleys: self.has_valleys || other.has_valleys,
         };
         let finite = [sum.max_slope, sum.max_curvature, sum.min_curvature];
         finite.iter().all(|v| v.is_finite()).then_some(sum)
@@ -77,19 +87,23 @@ impl SectionBounds {
 
     /// The bounds of the surface turned over (`f ↦ −f` along every section, as
     /// [`crate::surface::Turned`] does): the slopes keep their bound, the curvature bounds swap
-    /// and change sign; `None` with kinks, whose ridges would be valleys.
+    /// and change sign; its ridges become valleys (and its valleys ridges, its steps steps: any
+    /// kink is then counted as either).
     pub fn turned(self) -> Option<SectionBounds> {
-        (!self.has_ridges).then_some(SectionBounds {
+        let kinks = self.has_ridges || self.has_valleys;
+        Some(SectionBounds {
             max_curvature: -self.min_curvature,
             min_curvature: -self.max_curvature,
+            has_ridges: self.has_valleys,
+            has_valleys: kinks,
             ..self
         })
     }
 
     /// A lower bound m > 0 of −F″ for the nose height `F(a) = f(ρ_s + r·sin a) + r·cos a` over
     /// |a| ≤ `half_angle` (< 90°) wherever the arc stays on the disc, F′ dropping by at least
-    /// m·Δa over any Δa (ridges at the slope kinks only make it drop more); `None` where F
-    /// cannot be proven strictly concave so.
+    /// m·Δa over any Δa between valleys and steps (ridges only make it drop more); `None` where
+    /// F cannot be proven strictly concave so.
     ///
     /// `F″ = r²·cos²a·f″ − r·sin a·f′ − r·cos a ≤ −r·cos a·(1 − r·K⁺·cos a − S·tan|a|)` with
     /// S ≥ |f′| and K⁺ ≥ max(f″, 0), so `m = r·cos(β/2)·(1 − q)` with
@@ -179,12 +193,13 @@ mod tests {
     }
 
     #[test]
-    fn a_turned_surface_swaps_and_negates_its_curvature_bounds_and_loses_its_ridges() {
+    fn a_turned_surface_swaps_and_negates_its_curvature_bounds_and_its_ridges_become_valleys() {
         let b = SectionBounds {
             max_slope: 0.3,
             max_curvature: 0.02,
             min_curvature: -0.05,
             has_ridges: false,
+            has_valleys: false,
         };
         let t = b.turned().unwrap();
         assert_eq!(
@@ -192,9 +207,19 @@ mod tests {
             (0.3, 0.05, -0.02)
         );
         assert_eq!(t.turned(), Some(b));
-        assert!(b.with_ridges(true).turned().is_none());
+        // Ridges turned are valleys; valleys (or steps) turned may be either.
+        let ridged = b.with_ridges(true).turned().unwrap();
+        assert!(!ridged.has_ridges && ridged.has_valleys);
+        let valleys = SectionBounds {
+            has_valleys: true,
+            ..b
+        };
+        let turned = valleys.turned().unwrap();
+        assert!(turned.has_ridges && turned.has_valleys);
         // A sum's kinks are its parts'.
         let sum = b.and(SectionBounds::FLAT.with_ridges(true)).unwrap();
         assert!(sum.has_ridges && sum.min_curvature < -0.05 && sum.max_curvature > 0.02);
+        let sum = sum.and(valleys).unwrap();
+        assert!(sum.has_ridges && sum.has_valleys);
     }
 }

@@ -87,6 +87,12 @@ impl Surface for Sinusoid {
         SectionBounds::FLAT.plus(slope, slope * k)
     }
 
+    /// The section bounds: their derivation holds for every direction and phase, so on any
+    /// line (|∇z| ≤ |A|·k, the Hessian's eigenvalues within ±|A|·k²).
+    fn disc_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        self.section_bounds(radius_mm)
+    }
+
     fn describe(&self) -> String {
         format!(
             "sinusoidal grid A {} mm, λx {} mm, λy {} mm, φx {}°, φy {}°",

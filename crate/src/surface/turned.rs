@@ -127,7 +127,7 @@ mod tests {
     }
 
     #[test]
-    fn section_bounds_are_the_designs_turned_over_and_ridges_give_none() {
+    fn section_bounds_are_the_designs_turned_over_and_ridges_become_valleys() {
         use crate::surface::section_bounds::assert_bounds_hold;
         // A convex and a concave asphere, the odd freeform, a biconic: the turned surface's
         // sections against its bounds (the design's upward curvature becomes its downward).
@@ -157,10 +157,11 @@ mod tests {
                 (-b.min_curvature, -b.max_curvature)
             );
         }
-        // Concave lenslets' rims are ridges: turned over they are valleys, no bounds.
+        // Concave lenslets' rims are ridges: turned over they are valleys.
         let array = LensArray::new(&LensArraySpec::paper004(), PartDisc::centred(3.0)).unwrap();
-        assert!(array.section_bounds(3.0).is_some());
-        assert!(Turned::new(Box::new(array)).section_bounds(3.0).is_none());
+        assert!(array.section_bounds(3.0).unwrap().has_ridges);
+        let turned = Turned::new(Box::new(array)).section_bounds(3.0).unwrap();
+        assert!(turned.has_valleys && !turned.has_ridges);
     }
 
     #[test]

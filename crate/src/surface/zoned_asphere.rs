@@ -265,23 +265,23 @@ impl Surface for ZonedAsphere {
     }
 
     /// The largest of the zones' asphere bounds, each over the disc to its outer radius (or T):
-    /// a zone's sections are its asphere's. Only where every boundary inside T is continuous (a
-    /// step of at most [`MAX_BOUNDED_STEP_MM`], the rounding of the offsets) and a ridge (the
-    /// radial slope dropping outwards, `slope_jump ≤ 0`); a valley or a step gives none.
+    /// a zone's sections are its asphere's. A boundary inside T whose slope drops outwards
+    /// (`slope_jump ≤ 0`) and whose value is continuous (a step of at most
+    /// [`MAX_BOUNDED_STEP_MM`], the rounding of the offsets) is a ridge; any other kink is a
+    /// valley or a step (`has_valleys`: the nose height is then concave only between them).
     fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
         let t = radius_mm.abs();
         let inside = self.boundaries.iter().take_while(|b| b.radius_mm < t);
-        if inside
-            .clone()
-            .any(|b| b.step_mm.abs() > MAX_BOUNDED_STEP_MM || b.slope_jump > 0.0)
-        {
-            return None;
-        }
         let mut bounds = SectionBounds {
             max_slope: 0.0,
             max_curvature: f64::NEG_INFINITY,
             min_curvature: f64::INFINITY,
-            has_ridges: inside.clone().any(|b| b.is_kink()),
+            has_ridges: inside.clone().any(|b| {
+                b.is_kink() && b.slope_jump <= 0.0 && b.step_mm.abs() <= MAX_BOUNDED_STEP_MM
+            }),
+            has_valleys: inside
+                .clone()
+                .any(|b| b.step_mm.abs() > MAX_BOUNDED_STEP_MM || b.slope_jump > 0.0),
         };
         for (k, zone) in self.zones.iter().enumerate().take(inside.count() + 1) {
             let reach = self.outer.get(k).map_or(t, |&r| r.min(t));
@@ -395,7 +395,7 @@ mod tests {
     }
 
     #[test]
-    fn section_bounds_need_ridges_and_hold_on_dense_sections() {
+    fn section_bounds_hold_on_dense_sections_and_name_valleys_and_steps() {
         use crate::surface::section_bounds::assert_bounds_hold;
         // Parabolas of R 40, 50, 60 meeting in value at 0.6 and 1.1 mm: the slope drops
         // outwards at both (0.015 → 0.012, 0.022 → 0.0183), ridges.
@@ -410,7 +410,7 @@ mod tests {
         let (b, ..) = assert_bounds_hold(&ridges, 3.0, 16, 20_000);
         // The outer zone's own bounds over the whole disc are the largest here.
         assert!(b.max_slope <= 3.0 / 60.0 * (1.0 + 1e-8), "{b:?}");
-        // The same zones with the middle one flatter inside: a valley at 0.6 mm, none.
+        // The same zones with the middle one flatter inside: a valley at 0.6 mm.
         let valley = ZonedAsphere::new(&ZonedAsphereSpec {
             zones: vec![
                 zone_spec(Some(0.6), 60.0, -1.0, 0.0),
@@ -418,10 +418,11 @@ mod tests {
             ],
         })
         .unwrap();
-        assert!(valley.section_bounds(3.0).is_none());
-        // ... but a disc inside the first zone has its bounds.
-        assert!(valley.section_bounds(0.5).is_some());
-        // A step: none.
+        let v = valley.section_bounds(3.0).unwrap();
+        assert!(v.has_valleys && !v.has_ridges);
+        // ... and a disc inside the first zone has none.
+        assert!(!valley.section_bounds(0.5).unwrap().has_valleys);
+        // A step counts as a valley.
         let step = ZonedAsphere::new(&ZonedAsphereSpec {
             zones: vec![
                 zone_spec(Some(0.6), 40.0, -1.0, 0.0),
@@ -429,7 +430,8 @@ mod tests {
             ],
         })
         .unwrap();
-        assert!(step.section_bounds(3.0).is_none());
+        assert!(step.section_bounds(3.0).unwrap().has_valleys);
+        assert!(!b.has_valleys && b.has_ridges);
     }
 
     #[test]

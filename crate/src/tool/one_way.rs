@@ -29,10 +29,17 @@
 //! global one. It is then found without the grid: Newton on F′ = 0 from a = 0, the kinks'
 //! sides probed where a step would cross one, the maximum bracketed and refined as above, about
 //! 4 evaluations a point instead of 20 or more. The bounds are the certificate; a surface
-//! without them, or a nose too wide for them, gets the full search. Even aspheres, concave
-//! lens arrays, sinusoidal grids, tilted flats, odd aspheres (a cone only with its apex a
-//! ridge), and XY polynomial, Zernike and Chebyshev surfaces on an even asphere (Chebyshev
-//! within its half-widths) give bounds; every other family is searched in full.
+//! without them, or a nose too wide for them, gets the full search (the families that give
+//! them: [`crate::surface::section_bounds`]).
+//!
+//! **Valleys.** Where the sections may have kinks that are not ridges (convex lenslets' rims,
+//! a zone boundary whose slope rises or whose value steps, a ridged design turned over), the
+//! same bounds make F concave between them only ([`Concavity::valleys`]): the arc is cut at
+//! each kink under it ([`Surface::slope_kinks`], each side sampled as by the search) and each
+//! stretch's one maximum is its left end where F′ ≤ 0 there, its right end where F′ ≥ 0 there,
+//! else the refined bracket between them; the largest of them is the contact. About two
+//! evaluations a stretch and a few Newton steps in the one or two that hold a maximum, instead
+//! of the whole grid.
 //!
 //! **Warm start.** Along a path the certificate does not depend on where Newton starts: with
 //! one maximum on the arc, any start converges to it (kinks probed as before). A path therefore
@@ -261,7 +268,7 @@ impl NoseCompensator {
     pub fn tip_height(
         &self,
         surface: &dyn Surface,
-        concavity: Option<f64>,
+        concavity: Option<Concavity>,
         rho: f64,
         theta: f64,
     ) -> Result<f64, UndefinedError> {
@@ -285,15 +292,20 @@ impl NoseCompensator {
         self.compensate_from(surface, self.concavity(surface), rho_s, c, s, None)
     }
 
-    /// The concavity bound `m` (−F″ ≥ m on every arc over the part) where `surface` proves one
-    /// for this nose ([`crate::surface::SectionBounds::nose_height_concavity`]): the certificate
-    /// of the concave shortcut. A path computes it once and hands it to
+    /// The concavity bound (−F″ ≥ m on every arc over the part, between valleys where the
+    /// sections have any) where `surface` proves one for this nose
+    /// ([`crate::surface::SectionBounds::nose_height_concavity`]): the certificate of the
+    /// concave shortcut. A path computes it once and hands it to
     /// [`NoseCompensator::compensate_from`].
-    pub fn concavity(&self, surface: &dyn Surface) -> Option<f64> {
+    pub fn concavity(&self, surface: &dyn Surface) -> Option<Concavity> {
         match self.waviness {
-            None => surface
-                .section_bounds(self.limit_radius)
-                .and_then(|b| b.nose_height_concavity(self.r, self.half_angle)),
+            None => {
+                let b = surface.section_bounds(self.limit_radius)?;
+                Some(Concavity {
+                    m: b.nose_height_concavity(self.r, self.half_angle)?,
+                    valleys: b.has_valleys,
+                })
+            }
             Some(_) => None,
         }
     }
@@ -307,7 +319,7 @@ impl NoseCompensator {
     pub fn compensate_from(
         &self,
         surface: &dyn Surface,
-        concavity: Option<f64>,
+        concavity: Option<Concavity>,
         rho_s: f64,
         c: f64,
         s: f64,
@@ -326,7 +338,7 @@ impl NoseCompensator {
     pub fn compensate_with_local(
         &self,
         surface: &dyn Surface,
-        concavity: Option<f64>,
+        concavity: Option<Concavity>,
         rho_s: f64,
         c: f64,
         s: f64,
@@ -356,7 +368,7 @@ impl NoseCompensator {
     fn round(
         &self,
         surface: &dyn Surface,
-        concavity: Option<f64>,
+        concavity: Option<Concavity>,
         rho_s: f64,
         c: f64,
         s: f64,
@@ -372,11 +384,15 @@ impl NoseCompensator {
             edge: self.waviness.as_ref(),
         };
         let (lo, hi) = self.arc_range(rho_s);
-        let best = if let Some(m) = concavity {
-            let kinks = || self.kink_angles(surface, rho_s, c, s, lo, hi);
-            section.concave_peak(&kinks, lo, hi, m, start)?
-        } else {
-            self.search(&section, lo, hi)?
+        let kinks = || self.kink_angles(surface, rho_s, c, s, lo, hi);
+        let best = match concavity {
+            Some(Concavity { m, valleys: false }) => {
+                section.concave_peak(&kinks, lo, hi, m, start)?
+            }
+            Some(Concavity { m, valleys: true }) => {
+                section.piecewise_peak(&kinks(), lo, hi, m, start)?
+            }
+            None => self.search(&section, lo, hi)?,
         };
         let at_arc_end =
             (best.a - self.half_angle).abs() < 1e-12 || (best.a + self.half_angle).abs() < 1e-12;
@@ -420,6 +436,19 @@ impl NoseCompensator {
         }
         Ok(scan.best)
     }
+}
+
+/// The certificate of the concave shortcut for a path (module docs): −F″ ≥ `m` on every arc,
+/// between the sections' valleys and steps where `valleys`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Concavity {
+    /// The lower bound of −F″, mm per rad².
+    pub m: f64,
+    /// Whether the sections may have valleys or steps ([`SectionBounds::has_valleys`]): each
+    /// stretch of the arc between them is then searched apart.
+    ///
+    /// [`SectionBounds::has_valleys`]: crate::surface::SectionBounds::has_valleys
+    pub valleys: bool,
 }
 
 /// Offset, radians of nose angle, of the samples either side of a slope kink: each sees the
@@ -688,6 +717,58 @@ impl Section<'_> {
             .fold(x, |b, s| if s.f > b.f { s } else { b }))
     }
 
+    /// The maximum of F over `[lo, hi]` where F is concave between the kinks (valleys and
+    /// steps included: module docs), `kinks` the angles just before and after each, ascending
+    /// ([`NoseCompensator::kink_angles`]): the largest of the stretches' maxima, the stretch
+    /// that holds the warm start's angle (all of the arc where no kink is under it) by
+    /// [`Section::concave_peak`] from there, the others by [`Section::stretch_peak`].
+    fn piecewise_peak(
+        &self,
+        kinks: &[f64],
+        lo: f64,
+        hi: f64,
+        m: f64,
+        start: Option<WarmStart>,
+    ) -> Result<Sample, UndefinedError> {
+        let from = start.map_or(0.0, |w| w.angle()).clamp(lo, hi);
+        let mut best: Option<Sample> = None;
+        let mut first = lo;
+        // Each kink's side before it ends a stretch, its side after starts the next (kinks
+        // closer than their offsets give empty stretches, skipped).
+        let mut ends = kinks.iter().copied().chain([hi, hi]);
+        while let Some(end) = ends.next() {
+            if end >= first {
+                let peak = if (first..=end).contains(&from) {
+                    self.concave_peak(&Vec::new, first, end, m, start)?
+                } else {
+                    self.stretch_peak(first, end)?
+                };
+                if best.is_none_or(|b| peak.f > b.f) {
+                    best = Some(peak);
+                }
+            }
+            match ends.next() {
+                Some(next) => first = next,
+                None => break,
+            }
+        }
+        best.map_or_else(|| self.at(lo), Ok)
+    }
+
+    /// The maximum of F over `[a, b]` where it is concave and smooth: `a` where F′(a) ≤ 0, `b`
+    /// where F′(b) ≥ 0, else the refined bracket.
+    fn stretch_peak(&self, a: f64, b: f64) -> Result<Sample, UndefinedError> {
+        let left = self.at(a)?;
+        if left.g <= 0.0 || b == a {
+            return Ok(left);
+        }
+        let right = self.at(b)?;
+        if right.g >= 0.0 {
+            return Ok(right);
+        }
+        self.refine_from(left, right, left)
+    }
+
     /// The local maximum of F in `[lo.a, hi.a]` given `F′(lo) ≥ 0 ≥ F′(hi)`, not both zero:
     /// Newton on F′ = 0 inside the bracket, bisection where Newton would leave it or the
     /// section has a kink.
@@ -863,6 +944,50 @@ mod tests {
             if k == 1 {
                 assert!(rims > 100, "{rims} contacts on the land beside a rim");
             }
+        }
+    }
+
+    #[test]
+    fn the_piecewise_search_agrees_with_the_whole_arc_search_across_valleys() {
+        // Convex lenslets (valleys at the rims) and concave ones turned over (ridges become
+        // valleys): the bounds make F concave between the kinks only, and the stretches'
+        // maxima must give the height and contact of the sampled search of the whole arc.
+        use crate::surface::lens_array::Form;
+        use crate::surface::{LensArray, LensArraySpec, PartDisc, Turned};
+        let convex = LensArraySpec {
+            form: Form::Convex,
+            ..LensArraySpec::paper004()
+        };
+        let convex = LensArray::new(&convex, PartDisc::centred(5.0)).unwrap();
+        let concave = LensArray::new(&LensArraySpec::paper004(), PartDisc::centred(5.0)).unwrap();
+        let turned = Turned::new(Box::new(concave));
+        let surfaces: [&dyn Surface; 2] = [&convex, &turned];
+        for s in surfaces {
+            let comp = NoseCompensator::new(&tool(0.5), s.feature_length_mm(), 5.0).unwrap();
+            let concavity = comp.concavity(s).unwrap();
+            assert!(concavity.valleys);
+            let (mut beside, mut n) = (0, 0);
+            for i in 0..4000 {
+                let (rho, theta) = (5.2 - 5.4 * i as f64 / 4000.0, 0.7 * i as f64);
+                let (sn, cs) = f64::sin_cos(theta);
+                let fast = comp
+                    .compensate_from(s, Some(concavity), rho, cs, sn, None)
+                    .unwrap();
+                let full = comp.compensate_from(s, None, rho, cs, sn, None).unwrap();
+                assert!(
+                    (fast.z_center - full.z_center).abs() < 1e-13,
+                    "{} ρ {rho} θ {theta}: {} vs {}",
+                    s.describe(),
+                    fast.z_center,
+                    full.z_center
+                );
+                assert!((fast.angle - full.angle).abs() < 1e-6, "ρ {rho}: angle");
+                // Contacts away from the arc's middle: the maximum was on another stretch.
+                beside += usize::from(fast.angle.abs() > 0.2);
+                n += 1;
+            }
+            assert_eq!(n, 4000);
+            assert!(beside > 50, "{beside} contacts away from the middle");
         }
     }
 

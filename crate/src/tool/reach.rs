@@ -25,7 +25,7 @@ use crate::parallel::{fill_chunks, workers};
 use crate::path::{Location, PathError};
 use crate::progress::{Progress, ProgressFn, Stage};
 use crate::surface::{Line, Surface, UndefinedError};
-use crate::tool::NoseCompensator;
+use crate::tool::{Concavity, NoseCompensator};
 use serde::Serialize;
 use std::f64::consts::TAU;
 
@@ -318,7 +318,7 @@ fn components(grid: &[Option<Flag>], cols: usize) -> Vec<Vec<(usize, usize)>> {
 fn measure(
     surface: &dyn Surface,
     nose: &NoseCompensator,
-    concavity: Option<f64>,
+    concavity: Option<Concavity>,
     grid: &[Option<Flag>],
     cells: &[(usize, usize)],
     delta: f64,
@@ -422,7 +422,7 @@ struct Envelope<'a> {
     surface: &'a dyn Surface,
     nose: &'a NoseCompensator,
     /// The nose's certificate on the surface ([`NoseCompensator::concavity`]), proven once.
-    concavity: Option<f64>,
+    concavity: Option<Concavity>,
     c: f64,
     s: f64,
     half_width: f64,
@@ -443,7 +443,7 @@ impl<'a> Envelope<'a> {
     fn new(
         surface: &'a dyn Surface,
         nose: &'a NoseCompensator,
-        concavity: Option<f64>,
+        concavity: Option<Concavity>,
         theta: f64,
         part_radius: f64,
     ) -> Self {

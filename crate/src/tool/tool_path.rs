@@ -12,9 +12,9 @@
 //! aligned on the index (the warm start of [`crate::tool::one_way`]), so a point is the same
 //! bits however the path is computed.
 
-use super::NoseCompensator;
 use super::one_way::WarmStart;
 use super::reach::{self, Reach};
+use super::{Concavity, NoseCompensator};
 use crate::field::FieldError;
 use crate::job::{Compensation, Job, Sampling, StrategySpec};
 use crate::parallel::pipeline;
@@ -101,7 +101,7 @@ pub struct ToolPath {
     spiral: Spiral,
     nose: NoseCompensator,
     /// The nose's concavity bound on the surface ([`NoseCompensator::concavity`]).
-    concavity: Option<f64>,
+    concavity: Option<Concavity>,
 }
 
 impl ToolPath {
@@ -170,7 +170,7 @@ impl ToolPath {
 
     /// The nose's concavity bound on the surface, the certificate of the concave shortcut
     /// ([`NoseCompensator::concavity`]), computed once.
-    pub fn concavity(&self) -> Option<f64> {
+    pub fn concavity(&self) -> Option<Concavity> {
         self.concavity
     }
 

@@ -125,6 +125,7 @@ impl Found {
                 max_curvature: b.max_curvature.max(piece.max_curvature),
                 min_curvature: b.min_curvature.min(piece.min_curvature),
                 has_ridges: false,
+                has_valleys: false,
             },
         });
     }
@@ -414,6 +415,7 @@ fn graph([su, sv, suu, suv, svv]: [[Interval; 3]; 5]) -> Option<PieceBounds> {
         max_curvature: mean.hi + spread,
         min_curvature: mean.lo - spread,
         has_ridges: false,
+        has_valleys: false,
     };
     let width = |i: Interval| i.hi - i.lo;
     let piece = PieceBounds {

@@ -68,7 +68,7 @@ mod rooting;
 mod sphere;
 
 use super::asphere::Asphere;
-use super::{Line, Local, PartDisc, Surface, UndefinedError};
+use super::{Line, Local, PartDisc, SectionBounds, Surface, UndefinedError};
 use crate::field::{FieldError, length};
 use index::DiscIndex;
 use rooting::Parent;
@@ -715,6 +715,43 @@ impl Surface for CompoundEye {
         self.feature
     }
 
+    /// Its bounds on every line ([`Surface::disc_bounds`]).
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        self.disc_bounds(radius_mm)
+    }
+
+    /// The base's bounds and every cap's whose footprint disc meets the disc: a cap is on top
+    /// only inside the disc of its rooted seam (centre c, radius ρ), where its horizontal
+    /// distance from its centre is at most `d = |c − C| + ρ` (< R by the rooting); there a
+    /// sphere's gradient is at most `d/w` and its Hessian's eigenvalues (−1/w and −R²/w³,
+    /// w = √(R² − d²)) lie in `[−R²/w³, −1/R]`. The envelope of convex caps meets itself and the
+    /// base in valleys only (the upper envelope's slope rises across each seam).
+    fn disc_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        let t = radius_mm.abs();
+        let mut b = self.base.disc_bounds(t)?;
+        for seam in self.rooted_seams() {
+            let Piece::Cap(k) = seam.a else {
+                continue;
+            };
+            let [x, y, r] = disc(&seam.circle);
+            if x.hypot(y) - r > t {
+                continue;
+            }
+            let cap = &self.caps[k as usize];
+            let (big, d) = (cap.radius, (x - cap.centre[0]).hypot(y - cap.centre[1]) + r);
+            if d >= big {
+                return None;
+            }
+            let w = ((big - d) * (big + d)).sqrt();
+            b.max_slope = b.max_slope.max(d / w);
+            b.max_curvature = b.max_curvature.max(-1.0 / big);
+            b.min_curvature = b.min_curvature.min(-big * big / (w * w * w));
+            b.has_valleys = true;
+        }
+        // The sum with a flat section adds the margins every bound carries.
+        SectionBounds::FLAT.and(b)
+    }
+
     fn slope_kinks(&self, line: Line, t0: f64, t1: f64, out: &mut Vec<f64>) {
         let ((xa, ya), (xb, yb)) = (line.at(t0), line.at(t1));
         let mut near = Vec::new();
@@ -771,6 +808,26 @@ mod tests {
 
     fn preset() -> CompoundEye {
         CompoundEye::new(&CompoundEyeSpec::paper000(), PartDisc::centred(5.0)).unwrap()
+    }
+
+    #[test]
+    fn bounds_hold_on_dense_sections_with_valleys() {
+        // The preset (dome base, 7 elements of 17 lenslets), and a lone element on a dome, a
+        // bowl and a plane: the caps' and base's bounds hold at every section sample.
+        use crate::surface::section_bounds::assert_bounds_hold;
+        let eyes = [
+            preset(),
+            lone_element(Some(-20.0), 3.0, 0.5),
+            lone_element(Some(30.0), 3.0, 0.5),
+            lone_element(None, 3.0, 0.5),
+        ];
+        for eye in eyes {
+            let (b, slope, _) = assert_bounds_hold(&eye, 5.0, 72, 20_000);
+            assert!(b.has_valleys && !b.has_ridges, "{b:?}");
+            assert_eq!(eye.disc_bounds(5.0), Some(b));
+            // The rims' slope is reached to within the footprint discs' looseness.
+            assert!(b.max_slope < 1.5 * slope, "{b:?} {slope}");
+        }
     }
 
     /// A single bare element (no lenslets) on the given base.

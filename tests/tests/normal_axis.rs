@@ -237,6 +237,10 @@ fn tilted_kinks_match_a_brute_force_scan() {
 fn tilted_lens_array_plans_gouge_free() {
     let array = r#"{"type":"lens_array","lens_radius_mm":2.84,"aperture_mm":1.0,"pitch_mm":1.0,"grid":"rectangular","form":"convex"}"#;
     let json = job_json(array, 1.2, [0.3, 0.2]);
+    // The lenslets' bounds on every line carry over to the tilted frame, their rims still
+    // valleys: the nose height is searched stretch by stretch between them.
+    let planner = Planner::new(&Job::from_json(&json).unwrap()).unwrap();
+    assert!(planner.path().concavity().is_some_and(|c| c.valleys));
     let s = surface_of(&json);
     let kinks = |c: f64, sn: f64| {
         let mut out = Vec::new();

@@ -299,8 +299,11 @@ impl Surface for Reframed {
     /// `G = tan ψ` bounds the new frame's slope; a new-frame point within T of the axis lies
     /// within `T + G·T·sin τ ≤ 2T` of P in the design's XY when `G·sin τ ≤ 1` (asked). A
     /// section's curvature is `a·H·a/(N·e₃)` with `|a|² = 1 + g_d² ≤ 1 + G²` and
-    /// `N·e₃ ≥ cos ψ`, so it lies within the design's eigenvalue bounds times `(1 + G²)^(3/2)`.
-    /// None where the design gives none, has kinks, or ψ reaches 86°.
+    /// `N·e₃ ≥ cos ψ`, so it lies within the design's eigenvalue bounds times `(1 + G²)^(3/2)`
+    /// between its kinks. A kink keeps its kind: turned rigidly (with no overhang, ψ < 90°), the
+    /// material under a ridge is still a convex wedge, and its cut by any plane a convex corner
+    /// (a ridge of the section); under a valley, the space above. None where the design gives
+    /// none, or ψ reaches 86°.
     fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
         let t = radius_mm.abs();
         let tilt = self.e3[2].clamp(-1.0, 1.0).acos();
@@ -308,7 +311,7 @@ impl Surface for Reframed {
             .inner
             .disc_bounds(self.at[0].hypot(self.at[1]) + 2.0 * t)?;
         let psi = design.max_slope.atan() + tilt;
-        if design.has_ridges || design.has_valleys || psi.is_nan() || psi >= 86f64.to_radians() {
+        if psi.is_nan() || psi >= 86f64.to_radians() {
             return None;
         }
         let g = psi.tan();
@@ -320,8 +323,8 @@ impl Surface for Reframed {
             max_slope: g,
             max_curvature: design.max_curvature.max(0.0) * stretch,
             min_curvature: design.min_curvature.min(0.0) * stretch,
-            has_ridges: false,
-            has_valleys: false,
+            has_ridges: design.has_ridges,
+            has_valleys: design.has_valleys,
         })
     }
 
@@ -365,9 +368,11 @@ mod tests {
             let s = Reframed::new(design, at[0], at[1]).unwrap();
             assert_bounds_hold(&s, radius, 36, 2000);
         }
-        // Lenslets give no bounds over a disc (their rims): none.
+        // Concave lenslets seen along the normal on a lenslet's wall: bounds between the rims,
+        // which stay ridges.
         let array = LensArray::new(&LensArraySpec::paper004(), PartDisc::centred(3.0)).unwrap();
         let tilted = Reframed::new(Box::new(array), 0.3, 0.2).unwrap();
-        assert!(tilted.section_bounds(1.0).is_none());
+        let (b, ..) = assert_bounds_hold(&tilted, 1.0, 36, 4000);
+        assert!(b.has_ridges && !b.has_valleys);
     }
 }

@@ -384,13 +384,15 @@ impl NoseCompensator {
             edge: self.waviness.as_ref(),
         };
         let (lo, hi) = self.arc_range(rho_s);
-        let kinks = || self.kink_angles(surface, rho_s, c, s, lo, hi);
+        let kinks = || self.kink_angles(&section, lo, hi);
         let best = match concavity {
             Some(Concavity { m, valleys: false }) => {
                 section.concave_peak(&kinks, lo, hi, m, start)?
             }
             Some(Concavity { m, valleys: true }) => {
-                section.piecewise_peak(&kinks(), lo, hi, m, start)?
+                let mut centres = self.kink_centres(&section, lo, hi);
+                centres.sort_by(f64::total_cmp);
+                section.piecewise_peak(&centres, lo, hi, m, start)?
             }
             None => self.search(&section, lo, hi)?,
         };
@@ -424,7 +426,7 @@ impl NoseCompensator {
                 section.at(grid_angle(lo, hi, n, i))
             }
         };
-        let kinks = self.kink_angles(section.surface, section.rho_s, section.c, section.s, lo, hi);
+        let kinks = self.kink_angles(section, lo, hi);
         let mut kinks = kinks.iter().peekable();
         let mut scan = Scan::new(sample(0)?);
         for i in 1..=n {
@@ -472,41 +474,43 @@ impl NoseCompensator {
     /// Nose angles just before and after each slope kink of the section under the arc
     /// ([`Surface::slope_kinks`]), and the measured edge's table angles inside the arc,
     /// ascending.
-    fn kink_angles(
-        &self,
-        surface: &dyn Surface,
-        rho_s: f64,
-        c: f64,
-        s: f64,
-        lo: f64,
-        hi: f64,
-    ) -> Vec<f64> {
-        let r = self.r;
-        let mut angles = Vec::new();
-        surface.slope_kinks(
-            Line::radial(c, s),
-            rho_s + self.lateral(lo),
-            rho_s + self.lateral(hi),
-            &mut angles,
-        );
+    fn kink_angles(&self, section: &Section, lo: f64, hi: f64) -> Vec<f64> {
+        let mut angles = self.kink_centres(section, lo, hi);
         let table: &[f64] = self.waviness.as_ref().map_or(&[], |w| w.angles());
         if angles.is_empty() && table.is_empty() {
             return angles;
         }
-        let to_angle = |t: f64| match &self.waviness {
-            None => ((t - rho_s) / r).clamp(-1.0, 1.0).asin(),
-            Some(w) => w.angle_at_offset(t - rho_s),
-        };
-        // In place: each kink's parameter becomes the angle just before it, the one just
-        // after is appended.
+        // In place: each kink's angle becomes the angle just before it, the one just after is
+        // appended.
         for i in 0..angles.len() {
-            let a = to_angle(angles[i]);
+            let a = angles[i];
             angles[i] = a - KINK_OFFSET;
             angles.push(a + KINK_OFFSET);
         }
         angles.extend_from_slice(table);
         angles.retain(|a| *a > lo && *a < hi);
         angles.sort_by(f64::total_cmp);
+        angles
+    }
+
+    /// The nose angles of the slope kinks of the section under the arc
+    /// ([`Surface::slope_kinks`]), in the order the surface lists them (ascending along the
+    /// line).
+    fn kink_centres(&self, section: &Section, lo: f64, hi: f64) -> Vec<f64> {
+        let rho_s = section.rho_s;
+        let mut angles = Vec::new();
+        section.surface.slope_kinks(
+            Line::radial(section.c, section.s),
+            rho_s + self.lateral(lo),
+            rho_s + self.lateral(hi),
+            &mut angles,
+        );
+        for t in &mut angles {
+            *t = match &self.waviness {
+                None => ((*t - rho_s) / self.r).clamp(-1.0, 1.0).asin(),
+                Some(w) => w.angle_at_offset(*t - rho_s),
+            };
+        }
         angles
     }
 }
@@ -718,10 +722,12 @@ impl Section<'_> {
     }
 
     /// The maximum of F over `[lo, hi]` where F is concave between the kinks (valleys and
-    /// steps included: module docs), `kinks` the angles just before and after each, ascending
-    /// ([`NoseCompensator::kink_angles`]): the largest of the stretches' maxima, the stretch
-    /// that holds the warm start's angle (all of the arc where no kink is under it) by
-    /// [`Section::concave_peak`] from there, the others by [`Section::stretch_peak`].
+    /// steps included: module docs), `kinks` their nose angles, ascending
+    /// ([`NoseCompensator::kink_centres`]): the largest of the stretches' maxima, each stretch
+    /// from just after a kink to just before the next ([`KINK_OFFSET`], clamped to the arc: a
+    /// kink at an end leaves that end a stretch of its own), the one that holds the warm
+    /// start's angle (all of the arc where no kink is under it) by [`Section::concave_peak`]
+    /// from there, the others by [`Section::stretch_peak`].
     fn piecewise_peak(
         &self,
         kinks: &[f64],
@@ -733,10 +739,8 @@ impl Section<'_> {
         let from = start.map_or(0.0, |w| w.angle()).clamp(lo, hi);
         let mut best: Option<Sample> = None;
         let mut first = lo;
-        // Each kink's side before it ends a stretch, its side after starts the next (kinks
-        // closer than their offsets give empty stretches, skipped).
-        let mut ends = kinks.iter().copied().chain([hi, hi]);
-        while let Some(end) = ends.next() {
+        for k in kinks.iter().map(Some).chain([None]) {
+            let end = k.map_or(hi, |k| (k - KINK_OFFSET).clamp(lo, hi));
             if end >= first {
                 let peak = if (first..=end).contains(&from) {
                     self.concave_peak(&Vec::new, first, end, m, start)?
@@ -747,9 +751,8 @@ impl Section<'_> {
                     best = Some(peak);
                 }
             }
-            match ends.next() {
-                Some(next) => first = next,
-                None => break,
+            if let Some(k) = k {
+                first = (k + KINK_OFFSET).clamp(lo, hi);
             }
         }
         best.map_or_else(|| self.at(lo), Ok)
@@ -892,6 +895,27 @@ mod tests {
         }
     }
 
+    /// The 4 000 points of the shortcut tests, from beyond a 5 mm part's rim to its centre at
+    /// 0.7 rad steps: each point's θ, its section under a nose of r 0.5 mm, and its arc.
+    fn spiral_sections<'a>(
+        surface: &'a dyn Surface,
+        comp: &'a NoseCompensator,
+    ) -> impl Iterator<Item = (f64, Section<'a>, (f64, f64))> {
+        (0..4000).map(move |i| {
+            let (rho, theta) = (5.2 - 5.4 * i as f64 / 4000.0, 0.7 * i as f64);
+            let (s, c) = f64::sin_cos(theta);
+            let section = Section {
+                surface,
+                rho_s: rho,
+                c,
+                s,
+                r: 0.5,
+                edge: None,
+            };
+            (theta, section, comp.arc_range(rho))
+        })
+    }
+
     #[test]
     fn the_concave_shortcut_agrees_with_the_whole_arc_search() {
         // Where SectionBounds proves F concave the shortcut (Newton from a = 0, kinks probed)
@@ -915,19 +939,9 @@ mod tests {
                     .is_some()
             );
             let (mut rims, mut n) = (0, 0);
-            for i in 0..4000 {
-                let (rho, theta) = (5.2 - 5.4 * i as f64 / 4000.0, 0.7 * i as f64);
-                let (sn, cs) = f64::sin_cos(theta);
+            for (theta, section, (lo, hi)) in spiral_sections(s, &comp) {
+                let (rho, cs, sn) = (section.rho_s, section.c, section.s);
                 let fast = comp.compensate(s, rho, cs, sn).unwrap();
-                let section = Section {
-                    surface: s,
-                    rho_s: rho,
-                    c: cs,
-                    s: sn,
-                    r: 0.5,
-                    edge: None,
-                };
-                let (lo, hi) = comp.arc_range(rho);
                 let full = comp.search(&section, lo, hi).unwrap();
                 assert!(
                     (fast.z_center - full.f).abs() < 1e-13,
@@ -967,9 +981,8 @@ mod tests {
             let concavity = comp.concavity(s).unwrap();
             assert!(concavity.valleys);
             let (mut beside, mut n) = (0, 0);
-            for i in 0..4000 {
-                let (rho, theta) = (5.2 - 5.4 * i as f64 / 4000.0, 0.7 * i as f64);
-                let (sn, cs) = f64::sin_cos(theta);
+            for (theta, section, (lo, hi)) in spiral_sections(s, &comp) {
+                let (rho, cs, sn) = (section.rho_s, section.c, section.s);
                 let fast = comp
                     .compensate_from(s, Some(concavity), rho, cs, sn, None)
                     .unwrap();
@@ -984,6 +997,19 @@ mod tests {
                 assert!((fast.angle - full.angle).abs() < 1e-6, "ρ {rho}: angle");
                 // Contacts away from the arc's middle: the maximum was on another stretch.
                 beside += usize::from(fast.angle.abs() > 0.2);
+                // Extra cuts where F is smooth change nothing, nor kinks within their offset of
+                // the arc's ends (each end then a stretch of its own), warm start or not.
+                let mut kinks = comp.kink_centres(&section, lo, hi);
+                let ends = [lo + 0.5 * KINK_OFFSET, hi - 0.5 * KINK_OFFSET];
+                kinks.extend(ends.into_iter().chain([lo - 0.1, 0.5 * (lo + hi)]));
+                kinks.sort_by(f64::total_cmp);
+                let warm = WarmStart::toward(0.0, (0.0, 1.0), fast.angle + 0.01);
+                for start in [None, Some(warm)] {
+                    let cut = section
+                        .piecewise_peak(&kinks, lo, hi, concavity.m, start)
+                        .unwrap();
+                    assert!((cut.f - full.z_center).abs() < 1e-13, "ρ {rho}: cut");
+                }
                 n += 1;
             }
             assert_eq!(n, 4000);

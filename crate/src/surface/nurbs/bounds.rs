@@ -437,16 +437,7 @@ mod tests {
     fn patch() -> Patch {
         let u = KnotVector::new("u", 2, 5, &[0.0, 0.0, 0.0, 0.4, 0.7, 1.0, 1.0, 1.0]).unwrap();
         let v = KnotVector::new("v", 3, 5, &[0.0, 0.0, 0.0, 0.0, 1.5, 2.0, 2.0, 2.0, 2.0]).unwrap();
-        let mut points = Vec::new();
-        let mut weights = Vec::new();
-        for i in 0..5 {
-            for j in 0..5 {
-                let (x, y) = (i as f64, j as f64);
-                points.push([x + 0.1 * y, y - 0.2 * x, 0.3 * x * y - 0.1 * x * x]);
-                weights.push(1.0 + 0.3 * ((i * 5 + j) % 4) as f64);
-            }
-        }
-        Patch::new(u, v, &points, &weights)
+        super::super::patch::sample_patch(u, v)
     }
 
     /// The point of the Bézier net at (a, b) ∈ [0, 1]², by Bernstein sums of the nets' centres.

@@ -171,6 +171,23 @@ fn rational(aw: &Homogeneous, order: usize) -> Derivs {
     d
 }
 
+/// A rational patch on the knot vectors `u` and `v` for tests: control point (i, j) at
+/// `(i + 0.1j, j − 0.2i, 0.3ij − 0.1i²)`, weight `1 + 0.3·((i·cols + j) mod 4)`.
+#[cfg(test)]
+pub(super) fn sample_patch(u: KnotVector, v: KnotVector) -> Patch {
+    let (rows, cols) = (u.count(), v.count());
+    let mut points = Vec::new();
+    let mut weights = Vec::new();
+    for i in 0..rows {
+        for j in 0..cols {
+            let (x, y) = (i as f64, j as f64);
+            points.push([x + 0.1 * y, y - 0.2 * x, 0.3 * x * y - 0.1 * x * x]);
+            weights.push(1.0 + 0.3 * ((i * cols + j) % 4) as f64);
+        }
+    }
+    Patch::new(u, v, &points, &weights)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -179,16 +196,7 @@ mod tests {
     fn patch() -> Patch {
         let u = KnotVector::new("u", 2, 4, &[0.0, 0.0, 0.0, 0.4, 1.0, 1.0, 1.0]).unwrap();
         let v = KnotVector::new("v", 2, 3, &[0.0, 0.0, 0.0, 2.0, 2.0, 2.0]).unwrap();
-        let mut points = Vec::new();
-        let mut weights = Vec::new();
-        for i in 0..4 {
-            for j in 0..3 {
-                let (x, y) = (i as f64, j as f64);
-                points.push([x + 0.1 * y, y - 0.2 * x, 0.3 * x * y - 0.1 * x * x]);
-                weights.push(1.0 + 0.3 * ((i * 3 + j) % 4) as f64);
-            }
-        }
-        Patch::new(u, v, &points, &weights)
+        sample_patch(u, v)
     }
 
     /// The rational surface evaluated the slow way: every basis function by the Cox–de Boor

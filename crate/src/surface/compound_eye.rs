@@ -743,10 +743,13 @@ impl Surface for CompoundEye {
                 return None;
             }
             let w = ((big - d) * (big + d)).sqrt();
-            b.max_slope = b.max_slope.max(d / w);
-            b.max_curvature = b.max_curvature.max(-1.0 / big);
-            b.min_curvature = b.min_curvature.min(-big * big / (w * w * w));
-            b.has_valleys = true;
+            b = b.or(SectionBounds {
+                max_slope: d / w,
+                max_curvature: -1.0 / big,
+                min_curvature: -big * big / (w * w * w),
+                has_ridges: false,
+                has_valleys: true,
+            });
         }
         // The sum with a flat section adds the margins every bound carries.
         SectionBounds::FLAT.and(b)

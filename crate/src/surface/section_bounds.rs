@@ -77,6 +77,19 @@ impl SectionBounds {
         finite.iter().all(|v| v.is_finite()).then_some(sum)
     }
 
+    /// The bounds of a surface that is one or the other piece at each point (zones, caps,
+    /// Bézier pieces): the larger slope and curvature, the lesser least curvature, either's
+    /// kinds of kink.
+    pub fn or(self, other: SectionBounds) -> SectionBounds {
+        SectionBounds {
+            max_slope: self.max_slope.max(other.max_slope),
+            max_curvature: self.max_curvature.max(other.max_curvature),
+            min_curvature: self.min_curvature.min(other.min_curvature),
+            has_ridges: self.has_ridges || other.has_ridges,
+            has_valleys: self.has_valleys || other.has_valleys,
+        }
+    }
+
     /// These bounds with `ridges` marking slope kinks (ridges) in the disc.
     pub fn with_ridges(self, ridges: bool) -> SectionBounds {
         SectionBounds {
@@ -221,5 +234,18 @@ mod tests {
         assert!(sum.has_ridges && sum.min_curvature < -0.05 && sum.max_curvature > 0.02);
         let sum = sum.and(valleys).unwrap();
         assert!(sum.has_ridges && sum.has_valleys);
+        // Either piece: the wider of each bound, either's kinks.
+        let either = b.or(SectionBounds {
+            max_slope: 0.1,
+            max_curvature: 0.04,
+            min_curvature: -0.01,
+            has_ridges: true,
+            has_valleys: false,
+        });
+        assert_eq!(
+            (either.max_slope, either.max_curvature, either.min_curvature),
+            (0.3, 0.04, -0.05)
+        );
+        assert!(either.has_ridges && !either.has_valleys);
     }
 }

@@ -285,10 +285,7 @@ impl Surface for ZonedAsphere {
         };
         for (k, zone) in self.zones.iter().enumerate().take(inside.count() + 1) {
             let reach = self.outer.get(k).map_or(t, |&r| r.min(t));
-            let b = zone.asphere.section_bounds(reach)?;
-            bounds.max_slope = bounds.max_slope.max(b.max_slope);
-            bounds.max_curvature = bounds.max_curvature.max(b.max_curvature);
-            bounds.min_curvature = bounds.min_curvature.min(b.min_curvature);
+            bounds = bounds.or(zone.asphere.section_bounds(reach)?);
         }
         Some(bounds)
     }

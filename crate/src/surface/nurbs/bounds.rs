@@ -118,16 +118,7 @@ impl Found {
     }
 
     fn add(&mut self, piece: SectionBounds) {
-        self.bounds = Some(match self.bounds {
-            None => piece,
-            Some(b) => SectionBounds {
-                max_slope: b.max_slope.max(piece.max_slope),
-                max_curvature: b.max_curvature.max(piece.max_curvature),
-                min_curvature: b.min_curvature.min(piece.min_curvature),
-                has_ridges: false,
-                has_valleys: false,
-            },
-        });
+        self.bounds = Some(self.bounds.map_or(piece, |b| b.or(piece)));
     }
 }
 

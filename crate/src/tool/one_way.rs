@@ -384,7 +384,7 @@ impl NoseCompensator {
             edge: self.waviness.as_ref(),
         };
         let (lo, hi) = self.arc_range(rho_s);
-        let kinks = || self.kink_angles(&section, lo, hi);
+        let kinks = |from, to| self.kink_angles(&section, lo, hi, from, to);
         let best = match concavity {
             Some(Concavity { m, valleys: false }) => {
                 section.concave_peak(&kinks, lo, hi, m, start)?
@@ -426,7 +426,7 @@ impl NoseCompensator {
                 section.at(grid_angle(lo, hi, n, i))
             }
         };
-        let kinks = self.kink_angles(section, lo, hi);
+        let kinks = self.kink_angles(section, lo, hi, lo, hi);
         let mut kinks = kinks.iter().peekable();
         let mut scan = Scan::new(sample(0)?);
         for i in 1..=n {
@@ -471,11 +471,15 @@ impl NoseCompensator {
         self.edge_radius(a) * sin
     }
 
-    /// Nose angles just before and after each slope kink of the section under the arc
-    /// ([`Surface::slope_kinks`]), and the measured edge's table angles inside the arc,
-    /// ascending.
-    fn kink_angles(&self, section: &Section, lo: f64, hi: f64) -> Vec<f64> {
-        let mut angles = self.kink_centres(section, lo, hi);
+    /// Nose angles just before and after each slope kink of the section under the arc `[lo,
+    /// hi]` ([`Surface::slope_kinks`]), and the measured edge's table angles inside the arc,
+    /// ascending: those of them in `[from, to]` (within the arc). The surface is asked only for
+    /// the kinks under that stretch (with a margin of [`KINK_OFFSET`] and 10⁻⁹ rad), so a
+    /// Newton step pays for the lenslets it crosses rather than for all under the nose; each
+    /// kink's angle is computed as for the whole arc (it does not depend on the interval asked).
+    fn kink_angles(&self, section: &Section, lo: f64, hi: f64, from: f64, to: f64) -> Vec<f64> {
+        let margin = KINK_OFFSET + 1e-9;
+        let mut angles = self.kink_centres(section, (from - margin).max(lo), (to + margin).min(hi));
         let table: &[f64] = self.waviness.as_ref().map_or(&[], |w| w.angles());
         if angles.is_empty() && table.is_empty() {
             return angles;
@@ -488,7 +492,7 @@ impl NoseCompensator {
             angles.push(a + KINK_OFFSET);
         }
         angles.extend_from_slice(table);
-        angles.retain(|a| *a > lo && *a < hi);
+        angles.retain(|a| *a > lo && *a < hi && *a >= from && *a <= to);
         angles.sort_by(f64::total_cmp);
         angles
     }
@@ -656,16 +660,17 @@ impl Section<'_> {
     /// ([`crate::surface::SectionBounds::nose_height_concavity`]): F′ never rises, so the sign
     /// of F′ anywhere says on which side the one maximum lies. Newton from `start`'s angle (0
     /// without one; clamped to the arc, its sine and cosine by rotation) until a step would
-    /// cross a slope kink (`kinks` gives the angles either side of each, ascending, asked for
-    /// at the first step only: a start that is already the answer needs none), where the
-    /// kink's sides are probed instead, or the arc's end. With −F″ ≥ `m`, the maximum lies
+    /// cross a slope kink (`kinks(from, to)` gives the angles either side of each in
+    /// `[from, to]`, ascending; each step asks for those between its start and its Newton
+    /// target, or the arc's end where it has none, unless the stretch asked for last holds it,
+    /// and a start that is already the answer asks for none), where the kink's sides are probed instead, or the arc's end. With −F″ ≥ `m`, the maximum lies
     /// within |F′(x)|/m of a sample x and exceeds F(x) by at most F′(x)²/(2m): a sample x with
     /// |F′(x)|/m ≤ 10⁻¹⁰ rad is the answer (its height then within 10⁻²⁰·m mm of the maximum,
     /// its contact within 10⁻¹⁰·r). Otherwise, once the maximum is bracketed,
     /// [`Section::refine_from`] closes the bracket.
     fn concave_peak(
         &self,
-        kinks: &dyn Fn() -> Vec<f64>,
+        kinks: &dyn Fn(f64, f64) -> Vec<f64>,
         lo: f64,
         hi: f64,
         m: f64,
@@ -676,7 +681,7 @@ impl Section<'_> {
             None => self.at(0.0f64.clamp(lo, hi))?,
         };
         let (mut left, mut right) = (None::<Sample>, None::<Sample>);
-        let mut kink_list = None;
+        let mut asked: Option<(f64, f64, Vec<f64>)> = None;
         for _ in 0..100 {
             if x.g.abs() <= 1e-10 * m {
                 return Ok(x);
@@ -697,15 +702,27 @@ impl Section<'_> {
             if x.a == end {
                 return Ok(x);
             }
-            let kinks: &[f64] = kink_list.get_or_insert_with(kinks);
-            let kink = if up {
-                kinks.iter().copied().find(|&k| k > x.a)
-            } else {
-                kinks.iter().rev().copied().find(|&k| k < x.a)
-            };
-            let stop = kink.unwrap_or(end);
             let step = if x.gg < 0.0 { -x.g / x.gg } else { f64::NAN };
             let target = x.a + step;
+            // Only a kink between x and where the step lands can stop it (NaN: the arc's end).
+            let (from, to) = match up {
+                true if target < end => (x.a, target),
+                true => (x.a, end),
+                false if target > end => (target, x.a),
+                false => (end, x.a),
+            };
+            // A Newton step lands within the one before it, whose kinks are then known.
+            let known = asked.as_ref().filter(|(f, t, _)| *f <= from && to <= *t);
+            let near = match known {
+                Some((_, _, near)) => near,
+                None => &asked.insert((from, to, kinks(from, to))).2,
+            };
+            let kink = if up {
+                near.iter().copied().find(|&k| k > x.a)
+            } else {
+                near.iter().rev().copied().find(|&k| k < x.a)
+            };
+            let stop = kink.unwrap_or(end);
             let a = if (up && target < stop) || (!up && target > stop) {
                 target
             } else {
@@ -743,7 +760,7 @@ impl Section<'_> {
             let end = k.map_or(hi, |k| (k - KINK_OFFSET).clamp(lo, hi));
             if end >= first {
                 let peak = if (first..=end).contains(&from) {
-                    self.concave_peak(&Vec::new, first, end, m, start)?
+                    self.concave_peak(&|_, _| Vec::new(), first, end, m, start)?
                 } else {
                     self.stretch_peak(first, end)?
                 };
@@ -1014,6 +1031,60 @@ mod tests {
             }
             assert_eq!(n, 4000);
             assert!(beside > 50, "{beside} contacts away from the middle");
+        }
+    }
+
+    #[test]
+    fn the_kinks_under_part_of_the_arc_are_the_whole_arcs_there() {
+        // The concave shortcut asks for the kinks between a Newton step's ends only: they must
+        // be those of the whole arc in that stretch, to the bit (the lens array's rims, the
+        // compound eye's polished seams), and within 10⁻¹² rad where the kinks are found by an
+        // iteration along the line (a lens array on a tilted normal axis).
+        use crate::surface::{
+            CompoundEye, CompoundEyeSpec, LensArray, LensArraySpec, PartDisc, Reframed,
+        };
+        let lenses = LensArray::new(&LensArraySpec::paper004(), PartDisc::centred(5.0)).unwrap();
+        let eye = CompoundEye::new(&CompoundEyeSpec::paper000(), PartDisc::centred(5.0)).unwrap();
+        let tilted = Reframed::new(Box::new(lenses.clone()), 1.3, 0.2).unwrap();
+        let surfaces: [(&dyn Surface, f64); 3] = [(&lenses, 0.0), (&eye, 0.0), (&tilted, 1e-12)];
+        for (surface, tolerance) in surfaces {
+            let comp = NoseCompensator::new(&tool(0.5), surface.feature_length_mm(), 5.0).unwrap();
+            let (mut stretches, mut found) = (0, 0);
+            for (theta, section, (lo, hi)) in spiral_sections(surface, &comp).step_by(7) {
+                let whole = comp.kink_angles(&section, lo, hi, lo, hi);
+                // Stretches ending on a kink's side, just short of it, across it, and between.
+                let mut ends = vec![lo, hi, 0.5 * (lo + hi), lo + 0.3 * (hi - lo)];
+                for &k in &whole {
+                    ends.extend([k, k - 1e-13, k + 1e-13, k - 3e-12, k + 3e-12, k + 0.01]);
+                }
+                for (i, &from) in ends.iter().enumerate() {
+                    for &to in &ends[i + 1..] {
+                        let (from, to) = (from.min(to).max(lo), from.max(to).min(hi));
+                        let part = comp.kink_angles(&section, lo, hi, from, to);
+                        // Each found is one of the whole arc's in the stretch, and each of
+                        // those is found (but within the tolerance of the stretch's ends).
+                        let within =
+                            |a: f64, lo: f64, hi: f64| a >= lo - tolerance && a <= hi + tolerance;
+                        let near =
+                            |a: f64, list: &[f64]| list.iter().any(|b| (a - b).abs() <= tolerance);
+                        let found_all = whole.iter().all(|&a| {
+                            !within(a, from + 2.0 * tolerance, to - 2.0 * tolerance)
+                                || near(a, &part)
+                        });
+                        let all_kinks =
+                            part.iter().all(|&a| within(a, from, to) && near(a, &whole));
+                        assert!(
+                            found_all && all_kinks && part.is_sorted(),
+                            "{} ρ {} θ {theta} [{from}, {to}]: {part:?} of {whole:?}",
+                            surface.describe(),
+                            section.rho_s
+                        );
+                        stretches += 1;
+                        found += part.len();
+                    }
+                }
+            }
+            assert!(stretches > 10_000 && found > 10_000, "{stretches} {found}");
         }
     }
 

@@ -211,6 +211,14 @@ mod tests {
                 mag = mag * 10 + (k % 9 + 1);
             }
         }
+        for (units, text) in [
+            (i64::MAX, "9223372036.854775807"),
+            (i64::MIN, "-9223372036.854775808"),
+        ] {
+            buf.truncate(4);
+            push_scaled(&mut buf, units, 9);
+            assert_eq!(String::from_utf8(buf[4..].to_vec()).unwrap(), text);
+        }
     }
 
     #[test]

@@ -50,8 +50,9 @@
 //! the extrapolation's error is second order in the step, so the first sample is usually
 //! already within the 10⁻¹⁰ rad tolerance: about 1.07 evaluations a point on the asphere of the
 //! benchmarks (2.03 from the predecessor's angle alone, 4–5 cold), about 1.9 on the paper 004
-//! lens array (2.35 from the predecessor's angle). The slope kinks under the arc are listed
-//! only when a Newton step is taken. The contact found is the cold start's to the tolerance
+//! lens array (2.35 from the predecessor's angle). The slope kinks are listed only when a
+//! Newton step is taken, and only those between the step's start and its target (those of the
+//! stretch asked for before serve while the next step lands inside it). The contact found is the cold start's to the tolerance
 //! (tests/tests/compensation.rs).
 //!
 //! The arc is cut at the part's edge: beyond `limit_radius_mm` there is no material.

@@ -112,6 +112,12 @@ impl Surface for Placed {
         self.inner.slope_kinks(Line { x0, y0, c, s }, t0, t1, out);
     }
 
+    /// The term's own at the point in its coordinates (a rigid move keeps distances).
+    fn kink_free_radius(&self, x: f64, y: f64) -> f64 {
+        let (xi, yi) = self.to_inner(x, y);
+        self.inner.kink_free_radius(xi, yi)
+    }
+
     /// The term's own where it is not decentred (turned about the axis, its radial sections
     /// are its own at θ − φ); where it is, its [`Surface::disc_bounds`] over the disc moved
     /// with it (radius + decentre), which hold on any line.
@@ -217,6 +223,14 @@ impl Surface for Composite {
         for p in &self.parts {
             p.slope_kinks(line, t0, t1, out);
         }
+    }
+
+    /// The nearest of the parts'.
+    fn kink_free_radius(&self, x: f64, y: f64) -> f64 {
+        self.parts
+            .iter()
+            .map(|p| p.kink_free_radius(x, y))
+            .fold(f64::INFINITY, f64::min)
     }
 
     /// The sum of the parts' bounds ([`SectionBounds::and`]) where every part gives them: the

@@ -755,6 +755,11 @@ impl Surface for CompoundEye {
         SectionBounds::FLAT.and(b)
     }
 
+    /// Not said: the seams are found where the top piece changes (0).
+    fn kink_free_radius(&self, _x: f64, _y: f64) -> f64 {
+        0.0
+    }
+
     fn slope_kinks(&self, line: Line, t0: f64, t1: f64, out: &mut Vec<f64>) {
         let ((xa, ya), (xb, yb)) = (line.at(t0), line.at(t1));
         let mut near = Vec::new();

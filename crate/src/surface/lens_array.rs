@@ -267,6 +267,17 @@ impl Surface for LensArray {
         });
     }
 
+    /// The distance to the nearest lenslet's rim, `|d − a/2|` (d the distance to the nearest
+    /// grid node, cut or not): from outside every rim the nearest rim is the nearest node's (the
+    /// rims are equal circles); from inside a rim that is its own node's, and any other rim lies
+    /// at least `p − d − a/2 ≥ a/2 − d` away, the nodes being at least a pitch apart and a ≤ p.
+    /// Rims that are not cut only add distance.
+    fn kink_free_radius(&self, x: f64, y: f64) -> f64 {
+        let (cx, cy) = self.nearest_centre(x, y);
+        let (dx, dy) = (x - cx, y - cy);
+        ((dx * dx + dy * dy).sqrt() - self.half_aperture).abs()
+    }
+
     /// On a sphere of radius R, |∇z| = ρ/w and every second directional derivative is at most
     /// R²/w³ in size (w = √(R² − ρ²)), both largest at the rim (ρ = a/2); the land is flat.
     /// Concave lenslets are bowls (f″ ≥ 0) whose rims are ridges (the slope drops from the

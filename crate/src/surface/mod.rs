@@ -279,6 +279,16 @@ pub trait Surface: Send + Sync + std::fmt::Debug {
         let _ = (line, t0, t1, out);
     }
 
+    /// A radius, mm, about `(x, y)` within which the surface has no slope kink: a stretch of
+    /// any line inside that disc holds none of [`Surface::slope_kinks`]. The compensation then
+    /// need not ask for the kinks under a short step. Infinite where there are none (the
+    /// default, with the default `slope_kinks`); every family that has kinks says how far the
+    /// nearest may be, or 0 where it cannot say cheaply.
+    fn kink_free_radius(&self, x: f64, y: f64) -> f64 {
+        let _ = (x, y);
+        f64::INFINITY
+    }
+
     /// Bounds on the radial sections (through the axis) over the disc of radius `radius_mm`
     /// about the axis ([`SectionBounds`]), or `None` where the family cannot prove them or has
     /// a slope kink there that is not a ridge (the slope rising across it). `None` by default:

@@ -141,6 +141,15 @@ impl Surface for OddAsphere {
         }
     }
 
+    /// The apex's distance, less the tolerance within which a line is taken to pass through
+    /// it (the kink is reported at the line's point nearest the axis); none without β₁.
+    fn kink_free_radius(&self, x: f64, y: f64) -> f64 {
+        if self.beta1() == 0.0 {
+            return f64::INFINITY;
+        }
+        ((x * x + y * y).sqrt() - APEX_TOLERANCE).max(0.0)
+    }
+
     /// The conic's bounds plus each term's on a section through the axis: `|d/dt βₙ·|t|ⁿ| ≤
     /// n·|βₙ|·Rⁿ⁻¹` and `d²/dt² ≤ n(n−1)·|βₙ|·Rⁿ⁻²`. β₁'s apex is a ridge for β₁ < 0; for
     /// β₁ > 0 it is a valley (the slope rises across it), so there are none.

@@ -289,6 +289,16 @@ impl Surface for Reframed {
         }
     }
 
+    /// The design's at the moved point where the axis is not tilted; under a tilt not said (0:
+    /// the kinks are found along the curved image of each stretch).
+    fn kink_free_radius(&self, x: f64, y: f64) -> f64 {
+        if self.e3[2] == 1.0 {
+            self.inner.kink_free_radius(x + self.at[0], y + self.at[1])
+        } else {
+            0.0
+        }
+    }
+
     fn warnings(&self) -> Vec<String> {
         self.inner.warnings()
     }

@@ -513,6 +513,11 @@ impl Surface for Scattered {
         2.0 * self.spacing
     }
 
+    /// Not said: the neighbour sets switch every fraction of a spacing (0).
+    fn kink_free_radius(&self, _x: f64, _y: f64) -> f64 {
+        0.0
+    }
+
     /// Neighbour-set switches (value jumps) and, for the L1 RBF, the crossings of the axis
     /// lines through each piece's neighbours (slope jumps).
     fn slope_kinks(&self, line: Line, t0: f64, t1: f64, out: &mut Vec<f64>) {

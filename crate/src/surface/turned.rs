@@ -61,6 +61,11 @@ impl Surface for Turned {
         self.inner.slope_kinks(design, t0, t1, out);
     }
 
+    /// The design's at the mirrored point (x → −x keeps distances).
+    fn kink_free_radius(&self, x: f64, y: f64) -> f64 {
+        self.inner.kink_free_radius(-x, y)
+    }
+
     /// The design's bounds turned over ([`SectionBounds::turned`]): the turned section at θ is
     /// the design's at π − θ negated, `g(t) = −f(−t·cos θ, t·sin θ)`; none where the design has
     /// kinks (its ridges are the turned surface's valleys).

@@ -309,6 +309,16 @@ impl Surface for ZonedAsphere {
         }
     }
 
+    /// The nearest kinked boundary circle's distance, `|ρ − r_b|`.
+    fn kink_free_radius(&self, x: f64, y: f64) -> f64 {
+        let rho = (x * x + y * y).sqrt();
+        self.boundaries
+            .iter()
+            .filter(|b| b.is_kink())
+            .map(|b| (rho - b.radius_mm).abs())
+            .fold(f64::INFINITY, f64::min)
+    }
+
     fn warnings(&self) -> Vec<String> {
         self.boundaries
             .iter()

@@ -52,7 +52,9 @@
 //! benchmarks (2.03 from the predecessor's angle alone, 4–5 cold), about 1.9 on the paper 004
 //! lens array (2.35 from the predecessor's angle). The slope kinks are listed only when a
 //! Newton step is taken, and only those between the step's start and its target (those of the
-//! stretch asked for before serve while the next step lands inside it). The contact found is the cold start's to the tolerance
+//! stretch asked for before serve while the next step lands inside it), and not at all where the
+//! surface shows none within the step's reach ([`Surface::kink_free_radius`]: a lenslet's rim
+//! farther than the step moves the contact). The contact found is the cold start's to the tolerance
 //! (tests/tests/compensation.rs).
 //!
 //! The arc is cut at the part's edge: beyond `limit_radius_mm` there is no material.
@@ -385,7 +387,7 @@ impl NoseCompensator {
             edge: self.waviness.as_ref(),
         };
         let (lo, hi) = self.arc_range(rho_s);
-        let kinks = |from, to| self.kink_angles(&section, lo, hi, from, to);
+        let kinks = |from, to, sine| self.kinks_near(&section, lo, hi, [from, to], sine);
         let best = match concavity {
             Some(Concavity { m, valleys: false }) => {
                 section.concave_peak(&kinks, lo, hi, m, start)?
@@ -470,6 +472,33 @@ impl NoseCompensator {
             a.sin()
         };
         self.edge_radius(a) * sin
+    }
+
+    /// [`Self::kink_angles`] in `[from, to]`, one end of which has the sine `sine`, or none
+    /// without asking where the surface has no kink within reach of that end
+    /// ([`Surface::kink_free_radius`]): every angle in the stretch, widened by the sides' margin,
+    /// lies within `r·(to − from + margin)` of that end's point on the line, since the lateral
+    /// offset `r·sin a` moves by at most r per radian (not with a measured edge, whose table
+    /// angles are kinks too).
+    fn kinks_near(
+        &self,
+        section: &Section,
+        lo: f64,
+        hi: f64,
+        [from, to]: [f64; 2],
+        sine: f64,
+    ) -> Vec<f64> {
+        if self.waviness.is_none() {
+            let t = section.rho_s + self.r * sine;
+            let reach = self.r * (to - from + KINK_OFFSET + 1e-9) + 1e-9;
+            let free = section
+                .surface
+                .kink_free_radius(t * section.c, t * section.s);
+            if reach < free {
+                return Vec::new();
+            }
+        }
+        self.kink_angles(section, lo, hi, from, to)
     }
 
     /// Nose angles just before and after each slope kink of the section under the arc `[lo,
@@ -661,17 +690,18 @@ impl Section<'_> {
     /// ([`crate::surface::SectionBounds::nose_height_concavity`]): F′ never rises, so the sign
     /// of F′ anywhere says on which side the one maximum lies. Newton from `start`'s angle (0
     /// without one; clamped to the arc, its sine and cosine by rotation) until a step would
-    /// cross a slope kink (`kinks(from, to)` gives the angles either side of each in
-    /// `[from, to]`, ascending; each step asks for those between its start and its Newton
-    /// target, or the arc's end where it has none, unless the stretch asked for last holds it,
-    /// and a start that is already the answer asks for none), where the kink's sides are probed instead, or the arc's end. With −F″ ≥ `m`, the maximum lies
-    /// within |F′(x)|/m of a sample x and exceeds F(x) by at most F′(x)²/(2m): a sample x with
-    /// |F′(x)|/m ≤ 10⁻¹⁰ rad is the answer (its height then within 10⁻²⁰·m mm of the maximum,
-    /// its contact within 10⁻¹⁰·r). Otherwise, once the maximum is bracketed,
+    /// cross a slope kink (`kinks(from, to, sine)` gives the angles either side of each in
+    /// `[from, to]`, ascending, `sine` the sine of the end where the step starts; each step asks
+    /// for those between its start and its Newton target, or the arc's end where it has none,
+    /// unless the stretch asked for last holds it, and a start that is already the answer asks
+    /// for none), where the kink's sides are probed instead, or the arc's end. With −F″ ≥ `m`,
+    /// the maximum lies within |F′(x)|/m of a sample x and exceeds F(x) by at most F′(x)²/(2m):
+    /// a sample x with |F′(x)|/m ≤ 10⁻¹⁰ rad is the answer (its height then within 10⁻²⁰·m mm
+    /// of the maximum, its contact within 10⁻¹⁰·r). Otherwise, once the maximum is bracketed,
     /// [`Section::refine_from`] closes the bracket.
     fn concave_peak(
         &self,
-        kinks: &dyn Fn(f64, f64) -> Vec<f64>,
+        kinks: &dyn Fn(f64, f64, f64) -> Vec<f64>,
         lo: f64,
         hi: f64,
         m: f64,
@@ -716,7 +746,7 @@ impl Section<'_> {
             let known = asked.as_ref().filter(|(f, t, _)| *f <= from && to <= *t);
             let near = match known {
                 Some((_, _, near)) => near,
-                None => &asked.insert((from, to, kinks(from, to))).2,
+                None => &asked.insert((from, to, kinks(from, to, x.sa))).2,
             };
             let kink = if up {
                 near.iter().copied().find(|&k| k > x.a)
@@ -761,7 +791,7 @@ impl Section<'_> {
             let end = k.map_or(hi, |k| (k - KINK_OFFSET).clamp(lo, hi));
             if end >= first {
                 let peak = if (first..=end).contains(&from) {
-                    self.concave_peak(&|_, _| Vec::new(), first, end, m, start)?
+                    self.concave_peak(&|_, _, _| Vec::new(), first, end, m, start)?
                 } else {
                     self.stretch_peak(first, end)?
                 };

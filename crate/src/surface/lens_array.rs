@@ -82,6 +82,9 @@ pub struct LensArray {
     max_centre_radius: f64,
     /// Its square.
     max_centre_radius2: f64,
+    /// 1/pitch and 1/(row spacing), for the grid lookups.
+    per_pitch: f64,
+    per_row: f64,
 }
 
 impl LensArray {
@@ -128,6 +131,8 @@ impl LensArray {
             part,
             max_centre_radius,
             max_centre_radius2: max_centre_radius * max_centre_radius,
+            per_pitch: 1.0 / p,
+            per_row: 1.0 / row_spacing(spec.grid, p),
         })
     }
 
@@ -139,14 +144,15 @@ impl LensArray {
     /// The grid node nearest to (x, y).
     fn nearest_centre(&self, x: f64, y: f64) -> (f64, f64) {
         let p = self.spec.pitch_mm;
+        let columns = |x: f64, shift: f64| nearest_of_ratio(x, p, self.per_pitch, shift);
         match self.spec.grid {
-            Grid::Rectangular => (nearest(x / p) * p, nearest(y / p) * p),
+            Grid::Rectangular => (columns(x, 0.0) * p, columns(y, 0.0) * p),
             Grid::Hexagonal => {
-                let row = p * 3f64.sqrt() / 2.0;
-                let j0 = nearest(y / row);
+                let row = row_spacing(Grid::Hexagonal, p);
+                let j0 = nearest_of_ratio(y, row, self.per_row, 0.0);
                 let mut best = (f64::INFINITY, 0.0, 0.0);
                 for j in [j0 - 1.0, j0, j0 + 1.0] {
-                    let cx = (nearest(x / p - j / 2.0) + j / 2.0) * p;
+                    let cx = (columns(x, j / 2.0) + j / 2.0) * p;
                     let cy = j * row;
                     let d = (x - cx).powi(2) + (y - cy).powi(2);
                     if d < best.0 {
@@ -161,10 +167,7 @@ impl LensArray {
     /// Calls `visit` with every grid node in the box `[x0, x1] × [y0, y1]` whose lenslet is cut.
     fn centres_in(&self, [x0, x1, y0, y1]: [f64; 4], mut visit: impl FnMut(f64, f64)) {
         let p = self.spec.pitch_mm;
-        let row = match self.spec.grid {
-            Grid::Rectangular => p,
-            Grid::Hexagonal => p * 3f64.sqrt() / 2.0,
-        };
+        let row = row_spacing(self.spec.grid, p);
         for j in ceiling(y0 / row)..=floor(y1 / row) {
             let shift = match self.spec.grid {
                 Grid::Rectangular => 0.0,
@@ -202,6 +205,30 @@ fn nearest(x: f64) -> f64 {
     if t > y { t - 1.0 } else { t }
 }
 
+/// `nearest(x / d − shift)`, by a multiplication with `per_d` = 1/d where that rounds to the
+/// same integer: the product differs from the quotient by a few ulps (less than 10⁻¹⁵·|t| + one
+/// ulp of the shift's subtraction), so the two can disagree only where t lies within that of a
+/// half, and there the quotient decides. A division per coordinate was a fifth of a lens
+/// array's evaluation.
+fn nearest_of_ratio(x: f64, d: f64, per_d: f64, shift: f64) -> f64 {
+    let t = x * per_d - shift;
+    let n = nearest(t);
+    let from_half = (t - n).abs() - 0.5;
+    if from_half.abs() < 1e-12 + 1e-15 * t.abs() {
+        nearest(x / d - shift)
+    } else {
+        n
+    }
+}
+
+/// The distance between the grid's rows: the pitch, or √3/2 of it on a hexagonal grid.
+fn row_spacing(grid: Grid, p: f64) -> f64 {
+    match grid {
+        Grid::Rectangular => p,
+        Grid::Hexagonal => p * 3f64.sqrt() / 2.0,
+    }
+}
+
 /// ⌊x⌋ for |x| < 2⁶³ by truncation (`f64::floor` is a library call on baseline x86-64, and
 /// the kinks of a section are asked for at every Newton step of the compensation).
 fn floor(x: f64) -> i64 {
@@ -227,14 +254,16 @@ impl Surface for LensArray {
         let r2 = self.spec.lens_radius_mm * self.spec.lens_radius_mm;
         let w = (r2 - rho2).sqrt();
         let s = self.sign;
-        let w3 = w * w * w;
+        // One division: the slopes and curvatures scale with s/w and s/w³ = (s/w)³ (s = ±1).
+        let k = s / w;
+        let k3 = k * k * k;
         Ok(Local {
             z: s * (self.rim_w - w),
-            zx: s * dx / w,
-            zy: s * dy / w,
-            zxx: s * (r2 - dy * dy) / w3,
-            zxy: s * dx * dy / w3,
-            zyy: s * (r2 - dx * dx) / w3,
+            zx: dx * k,
+            zy: dy * k,
+            zxx: (r2 - dy * dy) * k3,
+            zxy: dx * dy * k3,
+            zyy: (r2 - dx * dx) * k3,
         })
     }
 
@@ -455,6 +484,41 @@ mod tests {
         // Halves go up (f64::round goes away from zero); both neighbours are equally near.
         assert_eq!(nearest(-2.5), -2.0);
         assert_eq!(nearest(2.5), 3.0);
+    }
+
+    #[test]
+    fn grid_lookups_by_reciprocal_pick_the_quotients_node() {
+        // Pitches whose reciprocal is inexact, abscissae on, a few ulps either side of and
+        // between the halves of the grid (where product and quotient may round apart), and the
+        // hexagonal rows' half shifts: the node is the quotient's, always.
+        for d in [
+            0.3,
+            0.7,
+            1.0 / 3.0,
+            0.123_456_789,
+            3f64.sqrt() / 2.0,
+            1.0,
+            2.5e-3,
+        ] {
+            let per_d = 1.0 / d;
+            for k in -2000..=2000 {
+                for shift in [0.0, 0.5, -1.5] {
+                    let half = (k as f64 + 0.5 + shift) * d;
+                    let mut xs = vec![half, (k as f64 + 0.2) * d, k as f64 * d];
+                    for u in 1..4u64 {
+                        xs.push(f64::from_bits(half.to_bits() + u));
+                        xs.push(f64::from_bits(half.to_bits() - u));
+                    }
+                    for x in xs {
+                        assert_eq!(
+                            nearest_of_ratio(x, d, per_d, shift),
+                            nearest(x / d - shift),
+                            "x {x} d {d} shift {shift}"
+                        );
+                    }
+                }
+            }
+        }
     }
 
     #[test]

@@ -631,3 +631,35 @@ fn the_dense_check_detects_a_cut() {
     );
     assert!(high.min > TOUCH, "{high:?}");
 }
+
+/// The runs a job's cost is estimated from (`ToolPath::probe_timed`: each run's first point
+/// searched alone, the next two warm-started from the contact before, as the walk computes
+/// them) are points of the walk: at the same index (exact for constant-angle sampling) the same
+/// X and C, and a height within 10⁻¹⁰ mm, on a lens array (its shortcut starts from the last
+/// contact), an asphere and the freeform PAL.
+#[test]
+fn the_cost_probes_are_points_of_the_walk() {
+    for file in [
+        "lens-array-paper004.json",
+        "asphere-f20.json",
+        "pal-paper003.json",
+    ] {
+        let mut job = common::example_job(file);
+        job.strategy.feed_mm_per_rev *= 8.0;
+        let planner = Planner::new(&job).unwrap();
+        let walk: Vec<_> = planner.points().map(|p| p.unwrap()).collect();
+        let (probes, _) = planner.probe_timed(64, &|| 0.0).unwrap();
+        assert!(probes.len() > 60, "{file}: {} runs", probes.len());
+        for q in probes.iter().flat_map(|p| &p.points) {
+            let p = &walk[q.index as usize];
+            assert_eq!((p.rho, p.theta), (q.rho, q.theta), "{file} at {}", q.index);
+            assert!(
+                (p.z - q.z).abs() < 1e-10,
+                "{file} at {}: walk {} mm, probe {} mm",
+                q.index,
+                p.z,
+                q.z
+            );
+        }
+    }
+}

@@ -92,15 +92,12 @@ impl Planner {
         let seconds = match clock {
             None => None,
             Some(now) => {
-                let t0 = now();
-                let probes = self.probe(PROBES)?;
-                let t1 = now();
-                self.weights(&probes)?;
-                let t2 = now();
+                // Timed a second time, the first having met the caches' cold starts.
+                let (probes, warm) = self.probe_timed(PROBES, now)?;
                 let per_point = |t: f64| t.max(0.0) / (2 * PROBES) as f64;
-                let compensate = per_point(t1 - t0) * passes as f64 / workers() as f64;
+                let compensate = per_point(warm) * passes as f64 / workers() as f64;
                 let n = path_points as f64;
-                Some(n * computed * compensate + n * written * per_point(t2 - t1))
+                Some(n * computed * compensate + n * written * self.block_seconds(&probes, now)?)
             }
         };
         let split = self.job().strategy.split.is_some();
@@ -117,6 +114,26 @@ impl Planner {
                 .then(|| crate::nc::fts_grid::max_bytes(dynamics::fts_grid::MAX_ENTRIES)),
             seconds,
         })
+    }
+
+    /// The time by `clock` of one NC block, from the probes' points written one after the
+    /// other by one writer (a block's text alone: the header and end each probe's own writer
+    /// adds in [`Self::weights`] cost twenty blocks' time).
+    fn block_seconds(&self, probes: &[Probe], clock: &dyn Fn() -> f64) -> Result<f64, PlanError> {
+        let job = self.job();
+        let split = job.strategy.split.is_some();
+        let mut count = ByteCount::default();
+        let mut w = NcWriter::resume(&mut count, &job.output, job.machine.spindle_rpm);
+        let points = probes.iter().flat_map(|p| &p.points);
+        let start = clock();
+        for q in points.clone() {
+            match split {
+                true => w.point_split(q, q.z)?,
+                false => w.point(q)?,
+            }
+        }
+        let blocks = points.count().max(1) as f64;
+        Ok((clock() - start).max(0.0) / blocks)
     }
 
     /// The writers' bytes per point at the probes, weighted by the path's density there.

@@ -268,28 +268,51 @@ impl ToolPath {
     /// where a surface that is undefined or not finite shows itself before any output). Their
     /// indices are estimates, exact for constant-angle sampling.
     pub fn probe(&self, n: usize) -> Result<Vec<Probe>, UndefinedError> {
+        Ok(self.probe_timed(n, &|| 0.0)?.0)
+    }
+
+    /// [`Self::probe`], and the time by `clock` that the runs' second and third points took:
+    /// each is started from the contact before it, as the walk computes every point but a
+    /// run's first ([`WARM_RUN`]), so this is the time of the points of a walk, which a contact
+    /// search of its own (the runs' first points, computed before the clock starts) can
+    /// exceed twentyfold on a surface whose shortcut starts from the last contact.
+    pub fn probe_timed(
+        &self,
+        n: usize,
+        clock: &dyn Fn() -> f64,
+    ) -> Result<(Vec<Probe>, f64), UndefinedError> {
         let r0 = self.spiral.start_radius_mm();
         let total = self.spiral.point_count_estimate();
-        (0..n)
+        let runs: Vec<[SpiralPoint; 3]> = (0..n)
             .filter_map(|i| {
                 let rho = r0 * (n - i) as f64 / n as f64;
                 let mut points = self.spiral.points_from(rho);
                 // Near the centre a short path may have fewer than three points left.
-                Some((points.next()?, points.next()?, points.next()?))
+                Some([points.next()?, points.next()?, points.next()?])
             })
-            .map(|(a, b, c)| {
-                let index = (total * (1.0 - a.rho / r0)).max(0.0) as u64;
-                let advance = a.rho - b.rho;
-                Ok(Probe {
-                    points: [
-                        self.path_point(index, a, &mut None)?.0,
-                        self.path_point(index + 1, b, &mut None)?.0,
-                        self.path_point(index + 2, c, &mut None)?.0,
-                    ],
-                    per_mm: if advance > 0.0 { 1.0 / advance } else { 0.0 },
-                })
-            })
-            .collect()
+            .collect();
+        let index = |a: &SpiralPoint| (total * (1.0 - a.rho / r0)).max(0.0) as u64;
+        let mut firsts = Vec::with_capacity(runs.len());
+        for [a, _, _] in &runs {
+            let mut warm = None;
+            let p = self.path_point(index(a), *a, &mut warm)?.0;
+            firsts.push((p, warm));
+        }
+        let start = clock();
+        let mut probes = Vec::with_capacity(runs.len());
+        for ([a, b, c], (first, mut warm)) in runs.into_iter().zip(firsts) {
+            let i = index(&a);
+            let advance = a.rho - b.rho;
+            probes.push(Probe {
+                points: [
+                    first,
+                    self.path_point(i + 1, b, &mut warm)?.0,
+                    self.path_point(i + 2, c, &mut warm)?.0,
+                ],
+                per_mm: if advance > 0.0 { 1.0 / advance } else { 0.0 },
+            });
+        }
+        Ok((probes, clock() - start))
     }
 
     /// Zones where the nose cannot reach the surface (see [`crate::tool::reach`]); `progress`

@@ -505,9 +505,10 @@ mod tests {
                 for shift in [0.0, 0.5, -1.5] {
                     let half = (k as f64 + 0.5 + shift) * d;
                     let mut xs = vec![half, (k as f64 + 0.2) * d, k as f64 * d];
-                    for u in 1..4u64 {
-                        xs.push(f64::from_bits(half.to_bits() + u));
-                        xs.push(f64::from_bits(half.to_bits() - u));
+                    let (mut up, mut down) = (half, half);
+                    for _ in 0..3 {
+                        (up, down) = (up.next_up(), down.next_down());
+                        xs.extend([up, down]);
                     }
                     for x in xs {
                         assert_eq!(

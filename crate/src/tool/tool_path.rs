@@ -273,9 +273,9 @@ impl ToolPath {
 
     /// [`Self::probe`], and the time by `clock` that the runs' second and third points took:
     /// each is started from the contact before it, as the walk computes every point but a
-    /// run's first ([`WARM_RUN`]), so this is the time of the points of a walk, which a contact
-    /// search of its own (the runs' first points, computed before the clock starts) can
-    /// exceed twentyfold on a surface whose shortcut starts from the last contact.
+    /// run's first ([`WARM_RUN`]), so this is the time of the points of a walk; the runs'
+    /// first points, each searched without a start, are computed before the clock starts
+    /// (a search of the whole arc costs more than a step from the last contact).
     pub fn probe_timed(
         &self,
         n: usize,

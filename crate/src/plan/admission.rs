@@ -116,23 +116,26 @@ impl Planner {
         })
     }
 
-    /// The time by `clock` of one NC block, from the probes' points written one after the
-    /// other by one writer (a block's text alone: the header and end each probe's own writer
-    /// adds in [`Self::weights`] cost twenty blocks' time).
+    /// The time by `clock` of one NC block: each probe run's second and third blocks, written
+    /// by a writer that takes its first point as context (as a slice's writer does), without
+    /// the header and end that each run's writer in [`Self::weights`] adds (they cost twenty
+    /// blocks' time).
     fn block_seconds(&self, probes: &[Probe], clock: &dyn Fn() -> f64) -> Result<f64, PlanError> {
         let job = self.job();
         let split = job.strategy.split.is_some();
         let mut count = ByteCount::default();
-        let mut w = NcWriter::resume(&mut count, &job.output, job.machine.spindle_rpm);
-        let points = probes.iter().flat_map(|p| &p.points);
         let start = clock();
-        for q in points.clone() {
-            match split {
-                true => w.point_split(q, q.z)?,
-                false => w.point(q)?,
+        for [a, b, c] in probes.iter().map(|p| &p.points) {
+            let mut w = NcWriter::resume(&mut count, &job.output, job.machine.spindle_rpm);
+            w.context(a, split.then_some(a.z))?;
+            for q in [b, c] {
+                match split {
+                    true => w.point_split(q, q.z)?,
+                    false => w.point(q)?,
+                }
             }
         }
-        let blocks = points.count().max(1) as f64;
+        let blocks = (2 * probes.len()).max(1) as f64;
         Ok((clock() - start).max(0.0) / blocks)
     }
 

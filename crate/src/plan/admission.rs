@@ -118,8 +118,8 @@ impl Planner {
 
     /// The time by `clock` of one NC block: each probe run's second and third blocks, written
     /// by a writer that takes its first point as context (as a slice's writer does), without
-    /// the header and end that each run's writer in [`Self::weights`] adds (they cost twenty
-    /// blocks' time).
+    /// the header and end that each run's writer in [`Self::weights`] adds (timed with them, a
+    /// block seemed twenty times dearer).
     fn block_seconds(&self, probes: &[Probe], clock: &dyn Fn() -> f64) -> Result<f64, PlanError> {
         let job = self.job();
         let split = job.strategy.split.is_some();

@@ -20,10 +20,16 @@
 //! Hann three-bin relations: for a tone at bin k + δ the neighbours stand in the ratios `(1 − δ)/(2
 //! + δ)` and `(1 + δ)/(2 − δ)` to bin k, which give `δ = 2(X₊ − X₋)/(X₋ + 2X₀ + X₊)` and the
 //! amplitude `X₀·(1 − δ²)/sinc δ` (exact up to the tone's own image at −f, a relative 1/(2k)³ for a
-//! tone k bins from 0), divided by the gain of the residual at that frequency
+//! tone k bins from 0). The record of N samples is padded with zeros to a [`fast_length`] L (at
+//! most 1/8 longer: a length with a large prime factor would go through Bluestein's algorithm,
+//! whose plan alone held 134 bytes a sample), so the spectrum is sampled every q = N/L of the
+//! record's bins; the same response `W(d) = sinc d/(1 − d²)` then gives δ as the root of
+//! `(W(δ − q) − W(δ + q))/(W(δ + q) + 2W(δ) + W(δ − q)) = (X₊ − X₋)/(X₋ + 2X₀ + X₊)` (rising in δ,
+//! found by bisection; the closed form at q = 1) and the amplitude `X₀/W(δ)`. The peak is then
+//! divided by the gain of the residual at that frequency
 //! ([`crate::dynamics::path_signal::residual_gain`]; 1 at whole cycles per revolution, left out
-//! below a gain of ½). Bin j of an N-sample record lies at `j·M/N` cycles per revolution (M samples
-//! per revolution), `j·M/N·n/60` Hz: frequencies scale with the spindle speed, amplitudes do not.
+//! below a gain of ½). Bin j of the padded record lies at `j·M/L` cycles per revolution (M samples
+//! per revolution), `j·M/L·n/60` Hz: frequencies scale with the spindle speed, amplitudes do not.
 //!
 //! **Instantaneous frequency.** The analytic signal `r + i·H{r}` by the FFT (positive
 //! frequencies doubled, negative ones removed). A record cut off at its ends has a Hilbert
@@ -101,8 +107,8 @@ pub struct BandFrequency {
 }
 
 /// The Hann amplitude spectrum of `x` (N samples) padded with zeros to `len ≥ N` samples,
-/// bins 0 … len/2 (bin j at j/len cycles per sample), in the unit of `x`. The peaks' three-bin
-/// relations hold for `len = N` only; a longer `len` samples the same spectrum more finely.
+/// bins 0 … len/2 (bin j at j/len cycles per sample), in the unit of `x`. A longer `len` samples
+/// the same spectrum more finely (every N/len of the record's bins).
 pub fn hann_amplitudes(x: &[f64], len: usize) -> Vec<f64> {
     let n = x.len();
     if n < 2 {
@@ -128,9 +134,10 @@ fn residual(grid: &UniformSignal, values: &[f64]) -> Vec<f64> {
     values.iter().zip(&sym).map(|(v, s)| v - s).collect()
 }
 
-/// Peaks of an amplitude spectrum: local maxima over ±2 bins (Hann's main lobe), at least
-/// [`SIGNIFICANT_FRACTION`] of the largest, refined between bins; (bin + δ, amplitude).
-fn peaks(a: &[f64]) -> Vec<(f64, f64)> {
+/// Peaks of an amplitude spectrum sampled every `q` of the record's bins (q ≤ 1: a record
+/// padded with zeros): local maxima over ±2 samples (Hann's main lobe), at least
+/// [`SIGNIFICANT_FRACTION`] of the largest, refined between samples; (sample + δ, amplitude).
+fn peaks(a: &[f64], q: f64) -> Vec<(f64, f64)> {
     let top = a.iter().copied().fold(0.0, f64::max);
     let floor = (SIGNIFICANT_FRACTION * top).max(NEGLIGIBLE_MM);
     let mut found: Vec<(f64, f64)> = (1..a.len().saturating_sub(1))
@@ -139,23 +146,57 @@ fn peaks(a: &[f64]) -> Vec<(f64, f64)> {
                 && (j.saturating_sub(2)..=(j + 2).min(a.len() - 1))
                     .all(|i| i == j || a[i] < a[j] || (a[i] == a[j] && i > j))
         })
-        .map(|j| refine(a[j - 1], a[j], a[j + 1], j))
+        .map(|j| refine(a[j - 1], a[j], a[j + 1], j, q))
         .collect();
     found.sort_by(|p, q| q.1.total_cmp(&p.1));
     found.truncate(MAX_PEAKS);
     found
 }
 
-/// The Hann three-bin estimate of a tone's bin and amplitude (module docs).
-fn refine(below: f64, at: f64, above: f64, j: usize) -> (f64, f64) {
-    let d = 2.0 * (above - below) / (below + 2.0 * at + above);
-    let d = d.clamp(-0.5, 0.5);
-    let sinc = if d == 0.0 {
+/// The Hann window's amplitude response `sinc d/(1 − d²)` at `d` of the record's bins from a
+/// tone (1 at the tone, ½ one bin away), for |d| < 2.
+fn hann_response(d: f64) -> f64 {
+    let d = d.abs();
+    if d == 0.0 {
         1.0
+    } else if d < 0.5 {
+        (PI * d).sin() / (PI * d * (1.0 - d * d))
     } else {
-        (PI * d).sin() / (PI * d)
+        // sin πd = sin π(1 − d): no 0/0 at d = 1.
+        let e = 1.0 - d;
+        if e == 0.0 {
+            0.5
+        } else {
+            (PI * e).sin() / (PI * e * d * (1.0 + d))
+        }
+    }
+}
+
+/// The Hann three-sample estimate of a tone's position and amplitude from the samples `below`,
+/// `at` and `above` at sample `j` of a spectrum sampled every `q` of the record's bins (module
+/// docs): the tone's offset δ from `at`, in the record's bins, is where the three responses
+/// stand in the samples' ratio `(X₊ − X₋)/(X₋ + 2X₀ + X₊)` (a function rising with δ over
+/// ±q/2, found by bisection; `2δ` itself when q = 1); the amplitude is `X₀` over the response
+/// at δ. Returns (j + δ/q, amplitude).
+fn refine(below: f64, at: f64, above: f64, j: usize, q: f64) -> (f64, f64) {
+    let ratio = (above - below) / (below + 2.0 * at + above);
+    let of = |d: f64| {
+        let (b, c, a) = (hann_response(d + q), hann_response(d), hann_response(d - q));
+        (a - b) / (b + 2.0 * c + a)
     };
-    (j as f64 + d, at * (1.0 - d * d) / sinc)
+    let (mut lo, mut hi) = (-0.5 * q, 0.5 * q);
+    let d = if ratio <= of(lo) {
+        lo
+    } else if ratio >= of(hi) {
+        hi
+    } else {
+        while hi - lo > 1e-15 {
+            let mid = 0.5 * (lo + hi);
+            if of(mid) < ratio { lo = mid } else { hi = mid }
+        }
+        0.5 * (lo + hi)
+    };
+    (j as f64 + d / q, at / hann_response(d))
 }
 
 /// The amplitude spectrum of the path's non-symmetric part at `spindle_rpm`, decimated to at
@@ -165,8 +206,9 @@ pub fn amplitude_spectrum(signal: &PathSignal, spindle_rpm: f64, max_bins: usize
     let Some(grid) = analysable(signal, spindle_rpm) else {
         return Spectrum::default();
     };
-    let a = hann_amplitudes(&residual(&grid, &grid.z_mm), grid.len());
-    let cpr_per_bin = grid.samples_per_rev as f64 / grid.len() as f64;
+    let len = fast_length(grid.len(), false);
+    let a = hann_amplitudes(&residual(&grid, &grid.z_mm), len);
+    let cpr_per_bin = grid.samples_per_rev as f64 / len as f64;
     let to_hz = |bin: f64| hz(bin * cpr_per_bin, spindle_rpm);
     let group = a.len().div_ceil(max_bins.max(1)).max(1);
     let (mut freq_hz, mut amplitude_um) = (Vec::new(), Vec::new());
@@ -188,7 +230,7 @@ pub fn amplitude_spectrum(signal: &PathSignal, spindle_rpm: f64, max_bins: usize
         resolution_hz: to_hz(1.0),
         freq_hz,
         amplitude_um,
-        peaks: peaks(&a)
+        peaks: peaks(&a, grid.len() as f64 / len as f64)
             .into_iter()
             .map(|(bin, amp)| {
                 let gain = residual_gain(bin * cpr_per_bin, grid.samples_per_rev);
@@ -413,6 +455,64 @@ mod tests {
         let fast = amplitude_spectrum(&s, 2.0 * rpm, 1000).peaks[0];
         assert!((fast.freq_hz - 2.0 * p.freq_hz).abs() < 1e-9 * p.freq_hz);
         assert!((fast.amplitude_um - p.amplitude_um).abs() < 1e-12);
+    }
+
+    #[test]
+    fn tones_in_a_padded_record_keep_their_frequency_and_amplitude() {
+        // Records of prime length (2593, 2119 samples) are padded to 2916 and 2187 samples, so
+        // the spectrum is sampled every 0.889 and 0.969 of the record's bins, and tones at
+        // whole, half and odd fractions of a cycle per revolution sit anywhere between the
+        // samples. Measured: frequency within 5e-10, amplitude within 3.1e-7 relative (the
+        // tone's image at −f and the window's finite-N terms); 1e-8 and 1e-6 hold them.
+        for (revs, k) in [
+            (40.5, 7.3),
+            (40.5, 7.31),
+            (40.5, 7.35),
+            (40.5, 7.0),
+            (33.1, 11.77),
+            (33.1, 11.5),
+        ] {
+            let (a, rpm) = (0.003, 60.0);
+            let s = spiral(revs, 64, 5.0, 0.01, |_, t| a * (k * t).sin());
+            let n = s.angle_rad.len();
+            assert!(fast_length(n, false) > n, "{n} is not padded");
+            let p = amplitude_spectrum(&s, rpm, 1000).peaks[0];
+            assert!((p.cycles_per_rev - k).abs() < 1e-8 * k, "k {k}: {p:?}");
+            assert!(
+                (p.amplitude_um - a * 1e3).abs() < 1e-6 * a * 1e3,
+                "k {k}: {p:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_three_sample_estimate_inverts_the_hann_response() {
+        // At the record's own bins (q = 1) the estimate is the closed form δ = 2(X₊ − X₋)/(X₋ +
+        // 2X₀ + X₊); between them it returns the offset and amplitude that made the samples.
+        let closed = |b: f64, c: f64, a: f64| 2.0 * (a - b) / (b + 2.0 * c + a);
+        for q in [1.0, 0.97, 0.889] {
+            for i in -10..=10 {
+                let d = 0.049 * q * i as f64;
+                let amp = 2.5;
+                let x = |o: f64| amp * hann_response(d + o);
+                let (b, c, a) = (x(q), x(0.0), x(-q));
+                let (pos, found) = refine(b, c, a, 100, q);
+                assert!((pos - (100.0 + d / q)).abs() < 1e-12, "q {q} d {d}: {pos}");
+                assert!((found - amp).abs() < 1e-12, "q {q} d {d}: {found}");
+                if q == 1.0 {
+                    assert!((closed(b, c, a) - d).abs() < 1e-12, "q 1 d {d}");
+                }
+            }
+        }
+        // The response itself: 1 at the tone, ½ one bin away, 0 two bins away, continuous
+        // through the reflected branch at ½.
+        assert_eq!(hann_response(0.0), 1.0);
+        assert_eq!(hann_response(-1.0), 0.5);
+        assert!(hann_response(2.0 - 1e-12).abs() < 1e-11);
+        let half = |d: f64| (PI * d).sin() / (PI * d * (1.0 - d * d));
+        for d in [0.5 - 1e-9, 0.5 + 1e-9, 0.7, 1.3, 1.0 + 1e-7] {
+            assert!((hann_response(d) - half(d)).abs() < 1e-9, "{d}");
+        }
     }
 
     #[test]

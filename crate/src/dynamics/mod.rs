@@ -68,14 +68,16 @@ impl From<crate::field::FieldError> for DynamicsError {
 /// Bins of the spectrum kept for display (peaks survive the decimation).
 pub const SPECTRUM_BINS: usize = 2048;
 
-/// The most points the dynamics analyse (about 2.1 GB in memory).
-pub const MAX_POINTS: u64 = 8_000_000;
+/// The most points the dynamics analyse (about 2.0 GB in memory).
+pub const MAX_POINTS: u64 = 10_000_000;
 
-/// The peak memory of the dynamics per path point, bytes, with some room: 234–235 MiB
-/// (245–247 MB) of peak resident set for 1 000 001 points of the sine grid
+/// The peak memory of the dynamics per path point, bytes, with some room: 167–171 MiB
+/// (175–179 MB) of peak resident set for 1 000 001 points of the sine grid
 /// (`sinusoid-grid-fts.json` at 1 000 points a revolution) with each kind of split and with
-/// machine limits alone (`python3 tests/bench/peak_memory.py`).
-pub const BYTES_PER_POINT: u64 = 260;
+/// machine limits alone (`python3 tests/bench/peak_memory.py`), 560 MiB for 4 000 001 points;
+/// the peak is the Hilbert transform's buffer, scratch and plan (48 bytes a sample of a
+/// transform at most 2.25 times as long as the path), beside the path's columns.
+pub const BYTES_PER_POINT: u64 = 200;
 
 /// Radius bands of the instantaneous frequency.
 pub const FREQUENCY_BANDS: usize = 32;

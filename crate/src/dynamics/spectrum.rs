@@ -48,8 +48,8 @@
 //! `sin(π/4)·2πρ/λ`, its 95th percentile `sin(0.95·π/2)·2πρ/λ`.
 
 use crate::dynamics::path_signal::{PathSignal, UniformSignal, hz, residual_gain};
-use rustfft::FftPlanner;
 use rustfft::num_complex::Complex;
+use rustfft::{Fft, FftPlanner};
 use serde::Serialize;
 use std::f64::consts::{PI, TAU};
 
@@ -277,10 +277,19 @@ pub fn fast_length(n: usize, even: bool) -> usize {
     }
 }
 
+/// The inverse FFT (unscaled) of `buf` in place by `forward`, the forward plan of its length:
+/// `IFFT(x) = conj(FFT(conj x))`, exact in floating point (conjugation only flips signs), so
+/// one plan's twiddles (16 bytes a sample of the transform) serve both directions.
+pub(crate) fn inverse_by_forward(forward: &dyn Fft<f64>, buf: &mut [Complex<f64>]) {
+    buf.iter_mut().for_each(|c| *c = c.conj());
+    forward.process(buf);
+    buf.iter_mut().for_each(|c| *c = c.conj());
+}
+
 /// The analytic signal of `x` by the FFT, the first and last `taper` samples rolled off by a
 /// raised cosine and the record padded with at least as many zeros, to a [`fast_length`]
-/// (module docs).
-pub fn analytic_signal(x: &[f64], taper: usize) -> Vec<Complex<f64>> {
+/// (module docs). `x` is let go before the transforms.
+pub fn analytic_signal(x: Vec<f64>, taper: usize) -> Vec<Complex<f64>> {
     let n = x.len();
     let taper = taper.min(n / 2);
     let roll = |j: usize| {
@@ -296,8 +305,9 @@ pub fn analytic_signal(x: &[f64], taper: usize) -> Vec<Complex<f64>> {
     let mut buf: Vec<Complex<f64>> = (0..len)
         .map(|j| Complex::new(if j < n { x[j] * roll(j) } else { 0.0 }, 0.0))
         .collect();
-    let mut planner = FftPlanner::new();
-    planner.plan_fft_forward(len).process(&mut buf);
+    drop(x);
+    let forward = FftPlanner::new().plan_fft_forward(len);
+    forward.process(&mut buf);
     for (j, c) in buf.iter_mut().enumerate() {
         let gain = match j {
             0 => 1.0,
@@ -307,8 +317,9 @@ pub fn analytic_signal(x: &[f64], taper: usize) -> Vec<Complex<f64>> {
         };
         *c *= gain / len as f64;
     }
-    planner.plan_fft_inverse(len).process(&mut buf);
+    inverse_by_forward(&*forward, &mut buf);
     buf.truncate(n);
+    buf.shrink_to_fit();
     buf
 }
 
@@ -320,7 +331,7 @@ pub fn instantaneous_frequency(
     spindle_rpm: f64,
     bands: usize,
 ) -> Vec<BandFrequency> {
-    let Some(grid) = analysable(signal, spindle_rpm) else {
+    let Some(mut grid) = analysable(signal, spindle_rpm) else {
         return Vec::new();
     };
     if bands == 0 {
@@ -331,7 +342,10 @@ pub fn instantaneous_frequency(
     } else {
         0
     };
-    let a = analytic_signal(&residual(&grid, &grid.z_mm), skip);
+    let r = residual(&grid, &grid.z_mm);
+    // Only the radii are needed from here on: the heights are let go before the transforms.
+    grid.z_mm = Vec::new();
+    let a = analytic_signal(r, skip);
     let rho_max = grid.rho_mm.iter().copied().fold(0.0, f64::max);
     let width = rho_max / bands as f64;
     let band_of = |rho: f64| {

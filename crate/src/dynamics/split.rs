@@ -51,7 +51,9 @@
 use crate::dynamics::path_signal::{
     PathSignal, SignalError, UniformSignal, hz, omega, peak_to_valley,
 };
-use crate::dynamics::spectrum::{fast_length, highest_significant_cycles_per_rev};
+use crate::dynamics::spectrum::{
+    fast_length, highest_significant_cycles_per_rev, inverse_by_forward,
+};
 use crate::field::{FieldError, positive};
 use crate::job::SplitSpec;
 use rustfft::num_complex::Complex;
@@ -224,7 +226,8 @@ pub fn response(k: f64, k_c: f64) -> f64 {
 /// taken once.
 struct LowPass {
     spectrum: Vec<Complex<f64>>,
-    inverse: Arc<dyn Fft<f64>>,
+    /// The forward plan, which also serves the inverse ([`inverse_by_forward`]).
+    forward: Arc<dyn Fft<f64>>,
     samples: usize,
     samples_per_rev: usize,
 }
@@ -234,14 +237,14 @@ impl LowPass {
         let head = EXTENSION_REVS * grid.samples_per_rev;
         let len = fast_length(grid.len() + 2 * head, false);
         let extended = extend(grid, head, len - grid.len() - head);
-        let mut planner = FftPlanner::new();
         let mut spectrum: Vec<Complex<f64>> =
             extended.iter().map(|&v| Complex::new(v, 0.0)).collect();
-        let len = spectrum.len();
-        planner.plan_fft_forward(len).process(&mut spectrum);
+        drop(extended);
+        let forward = FftPlanner::new().plan_fft_forward(spectrum.len());
+        forward.process(&mut spectrum);
         Self {
             spectrum,
-            inverse: planner.plan_fft_inverse(len),
+            forward,
             samples: grid.len(),
             samples_per_rev: grid.samples_per_rev,
         }
@@ -257,7 +260,7 @@ impl LowPass {
             .enumerate()
             .map(|(j, c)| c * response(j.min(len - j) as f64 * cpr_per_bin, k_c) / len as f64)
             .collect();
-        self.inverse.process(&mut buf);
+        inverse_by_forward(&*self.forward, &mut buf);
         let skip = EXTENSION_REVS * self.samples_per_rev;
         buf[skip..skip + self.samples]
             .iter()

@@ -17,8 +17,8 @@
 //!
 //! This module runs them over the whole path in memory (the FFTs need it: at most
 //! [`BYTES_PER_POINT`] bytes a point at the peak, where the transforms' buffers, scratch and
-//! twiddles meet the path's columns and grids; the transforms take lengths with small factors
-//! where the analysis allows, [`spectrum::fast_length`]), before the NC program is written,
+//! twiddles meet the path's columns and grids; every transform takes a length with small
+//! factors, [`spectrum::fast_length`]), before the NC program is written,
 //! when the job asks for it: a `strategy.split`, or any limit in `machine` (slides, FTS, block
 //! rate). The program is then written in a second pass with the slide's share `Z` and the
 //! servo's `W` ([`crate::nc::NcWriter::point_split`]).
@@ -69,15 +69,16 @@ impl From<crate::field::FieldError> for DynamicsError {
 pub const SPECTRUM_BINS: usize = 2048;
 
 /// The most points the dynamics analyse (about 2.0 GB in memory).
-pub const MAX_POINTS: u64 = 10_000_000;
+pub const MAX_POINTS: u64 = 12_000_000;
 
-/// The peak memory of the dynamics per path point, bytes, with some room: 167–171 MiB
-/// (175–179 MB) of peak resident set for 1 000 001 points of the sine grid
-/// (`sinusoid-grid-fts.json` at 1 000 points a revolution) with each kind of split and with
-/// machine limits alone (`python3 tests/bench/peak_memory.py`), 560 MiB for 4 000 001 points;
-/// the peak is the Hilbert transform's buffer, scratch and plan (48 bytes a sample of a
-/// transform at most 2.25 times as long as the path), beside the path's columns.
-pub const BYTES_PER_POINT: u64 = 200;
+/// The peak memory of the dynamics per path point, bytes, with some room: 137–148 MiB
+/// (144–155 MB) of peak resident set for 1 000 001 points of the sine grid
+/// (`sinusoid-grid-fts.json` at 1 000 points a revolution) with each kind of split, 107 MiB
+/// with machine limits alone (`python3 tests/bench/peak_memory.py`), 499 MiB for 4 000 001
+/// points (automatic and low-pass splits). The peak is the split's checks: a channel's
+/// spectrum (48 bytes a sample of a transform at most 1/8 longer than the path: buffer,
+/// scratch and plan) beside the path's columns, its grid and the channels.
+pub const BYTES_PER_POINT: u64 = 170;
 
 /// Radius bands of the instantaneous frequency.
 pub const FREQUENCY_BANDS: usize = 32;

@@ -53,8 +53,8 @@
 //! least geometrically and the loop ends within [`MAX_ITERATIONS`] steps whatever the surface
 //! (kinks included: bisection then converges on the kink, where e′ jumps through 0). It stops
 //! when the height still to gain is below [`HEIGHT_TOLERANCE`] (1e-13 mm): by the bracket
-//! (`width·max|e′(ends)|`, exact when e′ is monotone in it) or by the Newton model
-//! (`e′²/(2|e″|)`, quadratic convergence). The extremes of the segment are the most negative and
+//! (the crossing of the tangents at its ends above the best e found, a bound where e′ is
+//! monotone in it) or by the Newton model (`e′²/(2|e″|)`, quadratic convergence). The extremes of the segment are the most negative and
 //! most positive e over every sample and refined point. Each interior sample's contact search
 //! starts from the angle interpolated between the contacts of the segment's ends
 //! ([`crate::tool::WarmStart::toward`]); where the surface proves the nose height concave the
@@ -525,7 +525,7 @@ impl Segment<'_, '_> {
         let mut last_step = step_before_last;
         for _ in 0..MAX_ITERATIONS {
             let width = hi.s - lo.s;
-            if width <= 4.0 * f64::EPSILON || width * lo.d1.max(-hi.d1) <= HEIGHT_TOLERANCE {
+            if width <= 4.0 * f64::EPSILON || bracket_gain(&lo, &hi) - best.e <= HEIGHT_TOLERANCE {
                 break;
             }
             // Newton where e″ is known, else the secant of e′ across the bracket.
@@ -569,6 +569,22 @@ impl Segment<'_, '_> {
             d1: sigma * best.d1,
             d2: sigma * best.d2,
         })
+    }
+}
+
+/// The most σ·e can reach in the bracket [`lo`, `hi`] (σ applied: e′ ≥ 0 at `lo`, ≤ 0 at `hi`)
+/// where e′ falls monotonically across it (e concave there): below both ends' tangents, so at
+/// most where they cross. Never above `max(e(ends)) + width·max|e′(ends)|`, the bound it
+/// replaced, and far below it once one end has converged: the secant of e′ across the bracket
+/// (on a ridge, where e″ is not formed) keeps landing on one side, the other end staying put.
+fn bracket_gain(lo: &Node, hi: &Node) -> f64 {
+    let (up, down) = (lo.d1, -hi.d1);
+    let slopes = up + down;
+    if slopes > 0.0 {
+        let cross = ((hi.e - lo.e + lo.s * up + hi.s * down) / slopes).clamp(lo.s, hi.s);
+        (lo.e + (cross - lo.s) * up).min(hi.e + (hi.s - cross) * down)
+    } else {
+        lo.e.max(hi.e) + (hi.s - lo.s) * up.max(down)
     }
 }
 
@@ -845,5 +861,86 @@ mod tests {
         let top = segment.refine(lo, hi, 1.0).unwrap();
         assert!((top.e - 0.09 / 80.0).abs() < 1e-15);
         assert!((top.s - 0.5).abs() < 1e-7);
+    }
+
+    #[test]
+    fn the_bracket_bound_holds_every_concave_e_and_tightens_the_old_one() {
+        // Concave e on [a, b] with e′(a) > 0 > e′(b): a parabola, a quartic, a kink (two lines,
+        // where the tangents meet at the maximum itself) and a ridge-like kink with curved
+        // sides. The bound must lie above the maximum on a dense grid (brute force) and below
+        // the width·max|e′| bound it replaced; on the kink it is the maximum.
+        type Fun = (Box<dyn Fn(f64) -> f64>, Box<dyn Fn(f64) -> f64>);
+        let cases: Vec<(Fun, f64, f64)> = vec![
+            (
+                (
+                    Box::new(|s| -(s - 0.4) * (s - 0.4)),
+                    Box::new(|s| -2.0 * (s - 0.4)),
+                ),
+                0.0,
+                1.0,
+            ),
+            (
+                (
+                    Box::new(|s| -(s - 0.7f64).powi(4) - 0.1 * s * s),
+                    Box::new(|s| -4.0 * (s - 0.7f64).powi(3) - 0.2 * s),
+                ),
+                0.2,
+                0.95,
+            ),
+            (
+                (
+                    Box::new(|s: f64| (3.0 * s).min(1.0 - s)),
+                    Box::new(|s| if s < 0.25 { 3.0 } else { -1.0 }),
+                ),
+                0.0,
+                1.0,
+            ),
+            (
+                (
+                    Box::new(|s: f64| (2.0 * s - s * s).min(0.9 - 0.5 * s * s)),
+                    Box::new(|s| {
+                        if 2.0 * s - s * s < 0.9 - 0.5 * s * s {
+                            2.0 - 2.0 * s
+                        } else {
+                            -s
+                        }
+                    }),
+                ),
+                0.1,
+                0.9,
+            ),
+        ];
+        for ((e, d), a, b) in cases {
+            let node = |s: f64| Node {
+                s,
+                e: e(s),
+                d1: d(s),
+                d2: f64::NAN,
+            };
+            let (lo, hi) = (node(a), node(b));
+            let top = (0..=100_000)
+                .map(|k| e(a + (b - a) * k as f64 / 100_000.0))
+                .fold(f64::MIN, f64::max);
+            let bound = bracket_gain(&lo, &hi);
+            let old = lo.e.max(hi.e) + (b - a) * lo.d1.max(-hi.d1);
+            assert!(bound >= top - 1e-15, "[{a}, {b}]: {bound} < {top}");
+            assert!(bound <= old, "[{a}, {b}]: {bound} > {old}");
+        }
+        let kink = |s: f64| (3.0 * s).min(1.0 - s);
+        let (lo, hi) = (
+            Node {
+                s: 0.0,
+                e: 0.0,
+                d1: 3.0,
+                d2: f64::NAN,
+            },
+            Node {
+                s: 1.0,
+                e: kink(1.0),
+                d1: -1.0,
+                d2: f64::NAN,
+            },
+        );
+        assert!((bracket_gain(&lo, &hi) - 0.75).abs() < 1e-15);
     }
 }

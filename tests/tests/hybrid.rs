@@ -293,10 +293,14 @@ fn the_compound_eye_splits_its_two_frequencies_onto_the_right_axes() {
 #[test]
 fn the_dynamics_refuse_a_path_too_long_to_hold() {
     let mut job = coarse_grid_fts();
-    job.strategy.feed_mm_per_rev = 0.0002; // 20 000 revolutions of 512 points
+    job.strategy.feed_mm_per_rev = 0.0001; // 40 000 revolutions of 512 points
+    assert!(20_480_001 > spiralcam::dynamics::MAX_POINTS);
     let e = dynamics_error(&job);
+    let limit = spiralcam::dynamics::MAX_POINTS;
     assert!(
-        e.starts_with("strategy.sampling = 10240001 points: at most 8000000 points"),
+        e.starts_with(&format!(
+            "strategy.sampling = 20480001 points: at most {limit} points"
+        )),
         "{e}"
     );
 }

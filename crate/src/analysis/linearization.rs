@@ -53,8 +53,8 @@
 //! least geometrically and the loop ends within [`MAX_ITERATIONS`] steps whatever the surface
 //! (kinks included: bisection then converges on the kink, where e′ jumps through 0). It stops
 //! when the height still to gain is below [`HEIGHT_TOLERANCE`] (1e-13 mm): by the bracket
-//! (the crossing of the tangents at its ends above the best e found, a bound where e′ is
-//! monotone in it) or by the Newton model (`e′²/(2|e″|)`, quadratic convergence). The extremes of the segment are the most negative and
+//! (where its ends' tangents cross, over the best e: a bound where e′ is monotone in it) or by
+//! the Newton model (`e′²/(2|e″|)`). The extremes of the segment are the most negative and
 //! most positive e over every sample and refined point. Each interior sample's contact search
 //! starts from the angle interpolated between the contacts of the segment's ends
 //! ([`crate::tool::WarmStart::toward`]); where the surface proves the nose height concave the

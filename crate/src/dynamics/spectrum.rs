@@ -299,8 +299,8 @@ pub(crate) fn inverse_by_forward(forward: &dyn Fft<f64>, buf: &mut [Complex<f64>
 }
 
 /// The analytic signal of `x` by the FFT, the first and last `taper` samples rolled off by a
-/// raised cosine and the record padded with at least [`PAD_TAPERS`] times as many zeros (as
-/// many as it has samples when `taper` is 0), to a [`fast_length`] (module docs). `x` is let go before the transforms.
+/// raised cosine and the record padded with [`PAD_TAPERS`] times as many zeros or more (with
+/// as many as it has samples if `taper` is 0), to a [`fast_length`] (module docs); frees `x` first.
 pub fn analytic_signal(x: Vec<f64>, taper: usize) -> Vec<Complex<f64>> {
     let n = x.len();
     let taper = taper.min(n / 2);

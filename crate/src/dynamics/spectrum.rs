@@ -123,13 +123,17 @@ pub fn hann_amplitudes(x: Vec<f64>, len: usize) -> Vec<f64> {
         return Vec::new();
     }
     let len = len.max(n);
-    let window = |j: usize| 0.5 - 0.5 * (TAU * j as f64 / n as f64).cos();
-    let mut buf: Vec<Complex<f64>> = (0..len)
-        .map(|j| Complex::new(if j < n { x[j] * window(j) } else { 0.0 }, 0.0))
-        .collect();
+    // The window's sum (its gain) added up as it is applied: one cosine a sample.
+    let mut gain = 0.0;
+    let mut buf: Vec<Complex<f64>> = Vec::with_capacity(len);
+    for (j, v) in x.iter().enumerate() {
+        let w = 0.5 - 0.5 * (TAU * j as f64 / n as f64).cos();
+        gain += w;
+        buf.push(Complex::new(v * w, 0.0));
+    }
+    buf.resize(len, Complex::new(0.0, 0.0));
     drop(x);
     FftPlanner::new().plan_fft_forward(len).process(&mut buf);
-    let gain: f64 = (0..n).map(window).sum();
     buf[..=len / 2]
         .iter()
         .enumerate()

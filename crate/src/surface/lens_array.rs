@@ -485,6 +485,10 @@ mod tests {
             -7.7,
             1e9 + 0.3,
             -1e9 - 0.7,
+            // x + 0.5 just below 2⁵¹ (rounded by the 1.5·2⁵² sum) and just above it (by the
+            // conversion).
+            (1u64 << 51) as f64 - 1.25,
+            1.25 - (1u64 << 51) as f64,
             2251799813685247.7,
             -2251799813685247.7,
             2251799813685249.0,

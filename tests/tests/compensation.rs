@@ -511,7 +511,7 @@ fn the_warm_started_path_is_the_cold_one_and_the_same_in_batches_as_in_a_walk() 
         assert_eq!(handed, (12_345..40_001).collect::<Vec<u64>>(), "{surface}");
         let (mut worst_z, mut worst_angle, mut warm) = (0.0f64, 0.0f64, 0);
         for p in &walk {
-            let (s, c) = p.theta.sin_cos();
+            let (s, c) = path.spiral().sin_cos(p.theta);
             let cold = path.nose().compensate(path.surface(), p.rho, c, s).unwrap();
             worst_z = worst_z.max((cold.z_tip - p.z).abs());
             worst_angle = worst_angle.max((cold.angle - p.contact_angle).abs());

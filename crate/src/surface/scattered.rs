@@ -527,7 +527,7 @@ impl Surface for Scattered {
             return;
         }
         let mut pieces = Vec::new();
-        self.index.pieces(line, t0, t1, self.n, &mut pieces);
+        cache::pieces_along(self.id, &self.index, (line, self.n), [t0, t1], &mut pieces);
         let mut mine: Vec<f64> = pieces.iter().skip(1).map(|p| p.start).collect();
         if self.method == Method::Rbf && self.rbf.distance == Distance::L1 {
             for (k, piece) in pieces.iter().enumerate() {

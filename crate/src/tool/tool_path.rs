@@ -221,8 +221,10 @@ impl ToolPath {
         sp: SpiralPoint,
         warm: &mut Option<WarmStart>,
     ) -> Result<(PathPoint, bool), UndefinedError> {
-        let (s, c) = sp.theta.sin_cos();
         if self.job.strategy.compensation == Compensation::TwoWay {
+            // The angle's own sine: the C offset of a centre across the axis (±π) follows its
+            // sign, as the closed forms of tests/tests/two_way.rs do.
+            let (s, c) = sp.theta.sin_cos();
             let t = self
                 .nose
                 .compensate_two_way(self.surface.as_ref(), sp.rho, c, s)?;
@@ -239,6 +241,9 @@ impl ToolPath {
                 t.folds,
             ));
         }
+        // One-way the radial section is all that matters: the turn's direction, the same bits
+        // for the points of one angle on every turn ([`Spiral::sin_cos`]).
+        let (s, c) = self.spiral.sin_cos(sp.theta);
         let contact = self.nose.compensate_from(
             self.surface.as_ref(),
             self.concavity,

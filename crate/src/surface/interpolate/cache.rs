@@ -2,6 +2,15 @@
 //! pattern reuses heavily: the compensation asks for the slope kinks along a nose arc's line
 //! and then evaluates the surface at points of that same line, in order.
 //!
+//! - **Line windows**: the walked chunks of the neighbour-set walk along recent lines
+//!   ([`pieces_along`]), in a table of [`LINE_SLOTS`] entries, [`LINE_WAYS`] to a hash of the
+//!   line, the least recently used of them giving way: each holds the chunks around the last
+//!   range asked for on its line. The nose arcs of a constant-angle spiral's points at one
+//!   angle lie on one line (the same bits on every turn: [`crate::path::Spiral::sin_cos`]), a
+//!   feed apart, and the concave-zone report compensates many points of each of its sections:
+//!   a chunk is walked once for many arcs instead of once for each. The chunks are those of
+//!   the uncached walk ([`NeighbourIndex::chunk_pieces`], anchored at t = 0), so the pieces
+//!   are the same bits.
 //! - **Pieces**: the neighbour sets along the last line ([`remember_pieces`]); a query on that
 //!   line takes its piece's set instead of a kd-tree search ([`set_on_last_line`]), except
 //!   within [`SWITCH_BAND`] of a switch, where the search decides (the two agree everywhere
@@ -10,13 +19,20 @@
 //!   a hash of the neighbour set, a new one taking its slot's place ([`with_local_rbf`]): the
 //!   samples of one nose arc go back and forth across its pieces, and the next point's arc,
 //!   beside it, crosses mostly the same neighbour sets, so most systems are solved once for
-//!   several points (the scattered example: 50–55 s with this table, 52 s with 64 entries and
-//!   66–74 s with 8 searched in turn, round robin, 59 s with 4 096 slots).
+//!   several points.
 //!
-//! Both are keyed by a surface identity ([`next_id`]), so surfaces never share entries; the
+//! Measured on the scattered example (`crate/jobs/scattered-lens-array.json`, 180 001 points,
+//! 2 cores): 56–59 s before the windows, 29–32 s with them (peak memory 41 → 70 MB), the
+//! program byte-identical. The walk fell from about 45 % of the time to 3 %; the rest is the
+//! search of each arc, about 250 surface evaluations a point (every switch sampled either
+//! side). With the windows, 8 192 system slots gave 13.8 s on the example at a feed of
+//! 0.1 mm/rev against 16.3 s with 1 024 and 14.4 s with 32 768; 65 536 slots gave 28 s at the
+//! example's feed for 90 MB more.
+//!
+//! All are keyed by a surface identity ([`next_id`]), so surfaces never share entries; the
 //! values returned are those a fresh computation gives.
 
-use super::neighbours::{NeighbourSet, Piece};
+use super::neighbours::{NeighbourIndex, NeighbourSet, Piece, clip};
 use super::rbf::LocalRbf;
 use crate::surface::Line;
 use std::cell::RefCell;
@@ -25,8 +41,16 @@ use std::sync::atomic::{AtomicU64, Ordering};
 /// Distance from a switch (mm, plus 1e-15 of |t|) within which a query on the remembered line
 /// is searched for afresh: several times the uncertainty of a switch position (~2e-14 mm).
 pub const SWITCH_BAND: f64 = 1e-13;
-/// Local RBF systems kept per thread (a power of two; about 0.6 MB).
-pub const RBF_SLOTS: usize = 1024;
+/// Local RBF systems kept per thread (a power of two; about 4.5 MB).
+pub const RBF_SLOTS: usize = 8192;
+
+/// Lines whose walked chunks are kept per thread (a power of two): the 720 or so angles of a
+/// spiral's turn and the 360 sections of the concave-zone report.
+pub const LINE_SLOTS: usize = 2048;
+/// Entries a line may take (its hash picks a set of this many).
+pub const LINE_WAYS: usize = 4;
+/// The most chunks a window keeps (longer ranges are walked without keeping them).
+const MAX_WINDOW_CHUNKS: i64 = 1024;
 
 static NEXT_ID: AtomicU64 = AtomicU64::new(1);
 
@@ -43,7 +67,20 @@ struct LinePieces {
     pieces: Vec<Piece>,
 }
 
+/// The walked chunks `first..=last` of one line of one surface, their pieces in order.
+struct LineWindow {
+    /// When it was last asked for (the thread's count of requests).
+    used: u64,
+    id: u64,
+    line: Line,
+    n: usize,
+    first: i64,
+    last: i64,
+    walked: Vec<Piece>,
+}
+
 thread_local! {
+    static WINDOWS: RefCell<(u64, Vec<Option<LineWindow>>)> = const { RefCell::new((0, Vec::new())) };
     static PIECES: RefCell<Option<LinePieces>> = const { RefCell::new(None) };
     static SYSTEMS: RefCell<Vec<Option<Kept>>> = const { RefCell::new(Vec::new()) };
 }
@@ -58,6 +95,110 @@ fn slot(id: u64, set: &NeighbourSet) -> usize {
         (h.rotate_left(5) ^ u64::from(i)).wrapping_mul(K)
     });
     (h >> (64 - RBF_SLOTS.trailing_zeros())) as usize
+}
+
+/// The first of the [`LINE_WAYS`] slots of surface `id`'s line.
+fn line_ways(id: u64, line: &Line) -> usize {
+    const K: u64 = 0x517c_c1b7_2722_0a95;
+    let h = [line.x0, line.y0, line.c, line.s]
+        .iter()
+        .fold(id.wrapping_mul(K), |h, v| {
+            (h.rotate_left(5) ^ v.to_bits()).wrapping_mul(K)
+        });
+    let sets = LINE_SLOTS / LINE_WAYS;
+    (h >> (64 - sets.trailing_zeros())) as usize * LINE_WAYS
+}
+
+/// The pieces of constant `n`-neighbour set along `line` over `[t0, t1]`
+/// ([`NeighbourIndex::pieces`]'s, the same bits) for surface `id`, from the chunks kept for
+/// the line, walking and keeping those missing. The window then keeps the chunks of the range
+/// and a quarter of its length either side.
+pub fn pieces_along(
+    id: u64,
+    index: &NeighbourIndex,
+    (line, n): (Line, usize),
+    [t0, t1]: [f64; 2],
+    out: &mut Vec<Piece>,
+) {
+    let want = index.chunks(t0, t1);
+    let (first, last) = (*want.start(), *want.end());
+    if last.saturating_sub(first) >= MAX_WINDOW_CHUNKS {
+        return index.pieces(line, t0, t1, n, out);
+    }
+    WINDOWS.with(|c| {
+        let (clock, table) = &mut *c.borrow_mut();
+        if table.is_empty() {
+            table.resize_with(LINE_SLOTS, || None);
+        }
+        *clock += 1;
+        let first_way = line_ways(id, &line);
+        let ways = &mut table[first_way..first_way + LINE_WAYS];
+        let mine = |w: &LineWindow| w.id == id && w.line == line && w.n == n;
+        let way = match ways.iter().position(|w| w.as_ref().is_some_and(mine)) {
+            Some(k) => k,
+            None => {
+                let oldest = (0..LINE_WAYS)
+                    .min_by_key(|&k| ways[k].as_ref().map_or(0, |w| w.used))
+                    .unwrap_or(0);
+                ways[oldest] = Some(LineWindow {
+                    used: 0,
+                    id,
+                    line,
+                    n,
+                    first,
+                    last: first - 1,
+                    walked: Vec::new(),
+                });
+                oldest
+            }
+        };
+        let Some(window) = ways[way].as_mut() else {
+            return;
+        };
+        window.used = *clock;
+        window.cover(index, first, last);
+        clip(&window.walked, t0, t1, out);
+        let margin = (last - first) / 4 + 1;
+        window.trim(index, first - margin, last + margin);
+    });
+}
+
+impl LineWindow {
+    /// Walks the chunks of `first..=last` not kept yet (all of them when the window lies apart).
+    fn cover(&mut self, index: &NeighbourIndex, first: i64, last: i64) {
+        if self.walked.is_empty() || last < self.first - 1 || first > self.last + 1 {
+            self.walked.clear();
+            (self.first, self.last) = (first, first - 1);
+        }
+        if first < self.first {
+            let mut before = Vec::new();
+            for k in first..self.first {
+                index.chunk_pieces(self.line, k, self.n, &mut before);
+            }
+            self.walked.splice(0..0, before);
+            self.first = first;
+        }
+        for k in self.last + 1..=last {
+            index.chunk_pieces(self.line, k, self.n, &mut self.walked);
+        }
+        self.last = self.last.max(last);
+    }
+
+    /// Drops the chunks outside `first..=last`.
+    fn trim(&mut self, index: &NeighbourIndex, first: i64, last: i64) {
+        if last < self.last {
+            let end = index.chunk_start(last + 1);
+            let keep = self.walked.partition_point(|p| p.start < end);
+            self.walked.truncate(keep);
+            self.last = last;
+        }
+        if first > self.first {
+            let start = index.chunk_start(first);
+            let drop = self.walked.partition_point(|p| p.start < start);
+            self.walked.drain(..drop);
+            self.first = first;
+        }
+    }
 }
 
 /// Remembers the pieces of surface `id` along `line` up to `t1` (the first starts at t0).
@@ -123,6 +264,59 @@ mod tests {
     use super::super::rbf::{Distance, Polynomial, RbfSettings};
     use super::*;
     use std::cell::Cell;
+
+    #[test]
+    fn kept_windows_give_each_range_its_own_walk_to_the_bit() {
+        // A jittered grid and ranges along one line as a spiral asks for them (inward a feed
+        // at a time), then one back outward, one apart from the window, one overlapping its
+        // low side, one over both sides and one longer than a window keeps; another surface on
+        // the same line, and another line. Each range's pieces through the windows are those
+        // of a walk of that range alone.
+        let h = 0.04;
+        let points: Vec<[f64; 2]> = (-15..=15)
+            .flat_map(|j| {
+                (-15..=15).map(move |i| {
+                    let jitter = 0.2 * ((i * 7 + j * 13) as f64).sin();
+                    [(i as f64 + jitter) * h, (j as f64 - 0.5 * jitter) * h]
+                })
+            })
+            .collect();
+        let index = NeighbourIndex::new(&points, h).unwrap();
+        let mut ranges: Vec<[f64; 2]> = (0..40)
+            .map(|k| {
+                let centre = 0.5 - 0.01 * k as f64;
+                [centre - 0.15, centre + 0.15]
+            })
+            .collect();
+        ranges.extend([
+            [0.3, 0.5],
+            [-0.55, -0.5],
+            [-0.6, -0.45],
+            [-0.7, -0.3],
+            [-12.0, 12.0],
+            [0.1, 0.2],
+        ]);
+        // Ranges sliding back and forth by up to a chunk, of varying length: their ends fall
+        // at, inside and just beyond the kept windows' edges.
+        ranges.extend((0..240).map(|k| {
+            let centre = 0.3 * (k as f64 * 0.05).sin();
+            let half = 0.03 + 0.02 * (k % 5) as f64;
+            [centre - half, centre + half]
+        }));
+        let (first, second) = (next_id(), next_id());
+        let lines = [Line::radial(0.6, 0.8), Line::radial(-0.8, 0.6)];
+        let mut switches = 0;
+        for [t0, t1] in ranges {
+            for (id, line) in [(first, lines[0]), (second, lines[0]), (first, lines[1])] {
+                let (mut kept, mut walked) = (Vec::new(), Vec::new());
+                pieces_along(id, &index, (line, 8), [t0, t1], &mut kept);
+                index.pieces(line, t0, t1, 8, &mut walked);
+                assert_eq!(kept, walked, "[{t0}, {t1}] {line:?}");
+                switches += walked.len() - 1;
+            }
+        }
+        assert!(switches > 1000, "{switches}");
+    }
 
     #[test]
     fn kept_systems_give_the_fresh_solution_and_surfaces_never_share_them() {

@@ -17,8 +17,10 @@
 //! walked in chunks of half a spacing: the candidates of a chunk are the points within
 //! `d_n + 1.5·chunk` of its midpoint (d_n the n-th distance at its start, which grows by at
 //! most the distance walked), and the earliest crossing of any (member, outsider) pair is
-//! swapped in, repeatedly ([`super::kinetic`]). At the start of each chunk the set carried in
-//! is checked against the candidates' keys.
+//! swapped in, repeatedly ([`super::kinetic`]). The chunks lie on a grid anchored at t = 0,
+//! `[k·c, (k+1)·c)`, and each starts from the kd-tree's set at its start: a chunk's pieces
+//! depend on the line and k only, so that a stretch's switches are the same bits whichever
+//! range they were asked for in, and chunks walked once can be kept ([`super::cache`]).
 
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use std::num::NonZero;
@@ -179,14 +181,43 @@ impl NeighbourIndex {
     /// The pieces of constant `n`-neighbour set along `line` over `[t0, t1]`, in order; the
     /// first starts at t0, every later start is a switch.
     pub fn pieces(&self, line: Line, t0: f64, t1: f64, n: usize, out: &mut Vec<Piece>) {
-        let mut set = self.nearest(line.at(t0).into(), n);
-        out.push(Piece { start: t0, set });
-        let mut t = t0;
-        while t < t1 {
-            let tb = (t + self.chunk).min(t1);
-            self.walk_chunk(line, [t, tb], n, &mut set, out);
-            t = tb;
+        let mut walked = Vec::new();
+        for k in self.chunks(t0, t1) {
+            self.chunk_pieces(line, k, n, &mut walked);
         }
+        clip(&walked, t0, t1, out);
+    }
+
+    /// The chunks of the line walk that cover `[t0, t1]` (module docs).
+    pub fn chunks(&self, t0: f64, t1: f64) -> std::ops::RangeInclusive<i64> {
+        // The quotients may round across a chunk's start: the chunks' own starts decide.
+        let mut first = (t0 / self.chunk).floor() as i64;
+        if self.chunk_start(first) > t0 {
+            first = first.saturating_sub(1);
+        }
+        let mut last = (t1 / self.chunk).floor() as i64;
+        if self.chunk_start(last.saturating_add(1)) < t1 {
+            last = last.saturating_add(1);
+        }
+        // A range ending on a chunk's start does not need that chunk.
+        if last > first && self.chunk_start(last) >= t1 {
+            last -= 1;
+        }
+        first..=last
+    }
+
+    /// Where chunk `k` starts, mm of line parameter.
+    pub fn chunk_start(&self, k: i64) -> f64 {
+        k as f64 * self.chunk
+    }
+
+    /// Appends chunk `k`'s pieces along `line`: the first at the chunk's start with the
+    /// kd-tree's set there, then each switch inside it.
+    pub fn chunk_pieces(&self, line: Line, k: i64, n: usize, out: &mut Vec<Piece>) {
+        let (ta, tb) = (self.chunk_start(k), self.chunk_start(k + 1));
+        let mut set = self.nearest(line.at(ta).into(), n);
+        out.push(Piece { start: ta, set });
+        self.walk_chunk(line, [ta, tb], n, &mut set, out);
     }
 
     /// Kinetic update of `set` over `[ta, tb]`, recording every switch in `out`.
@@ -275,6 +306,26 @@ impl NeighbourIndex {
             r2: dx * dx + dy * dy,
             along: line.c * dx + line.s * dy,
             member: set.indices().contains(&index),
+        }
+    }
+}
+
+/// The pieces of `[t0, t1]` from the pieces of the chunks covering it, in order: the one
+/// holding t0 (starting there), then each later one whose set differs from the one before.
+pub fn clip(walked: &[Piece], t0: f64, t1: f64, out: &mut Vec<Piece>) {
+    let first = walked.partition_point(|p| p.start <= t0).saturating_sub(1);
+    let Some(&Piece { set, .. }) = walked.get(first) else {
+        return;
+    };
+    out.push(Piece { start: t0, set });
+    let mut last = set;
+    for p in &walked[first + 1..] {
+        if p.start >= t1 {
+            break;
+        }
+        if p.set != last {
+            out.push(*p);
+            last = p.set;
         }
     }
 }
@@ -414,6 +465,32 @@ mod tests {
                 let line = Line::radial(theta.cos(), theta.sin());
                 check_pieces(&ix, line, 4.87, 4.97, n);
             }
+        }
+    }
+
+    #[test]
+    fn a_range_has_the_switches_of_any_range_holding_it_to_the_bit() {
+        // The chunks are anchored at t = 0: the switches inside [0.05, 0.13] are the same
+        // numbers asked over it as over [−0.3, 0.4], and its first piece is the longer
+        // range's piece that covers 0.05.
+        let h = 0.04;
+        let ix = NeighbourIndex::new(&jittered(h, 8), h).unwrap();
+        for (theta, n) in [(0.3f64, 8), (2.9, 4), (1.2, 10)] {
+            let (s, c) = theta.sin_cos();
+            let line = Line::radial(c, s);
+            let (mut inner, mut outer) = (Vec::new(), Vec::new());
+            ix.pieces(line, 0.05, 0.13, n, &mut inner);
+            ix.pieces(line, -0.3, 0.4, n, &mut outer);
+            let inside: Vec<Piece> = outer
+                .iter()
+                .filter(|p| p.start > 0.05 && p.start < 0.13)
+                .copied()
+                .collect();
+            assert!(inside.len() >= 3, "{inside:?}");
+            assert_eq!(&inner[1..], &inside[..], "theta {theta} n {n}");
+            let covering = outer.partition_point(|p| p.start <= 0.05) - 1;
+            assert_eq!(inner[0].start, 0.05);
+            assert_eq!(inner[0].set, outer[covering].set);
         }
     }
 

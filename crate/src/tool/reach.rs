@@ -18,7 +18,10 @@
 //! golden-section searches (over u for the largest residual, over ρ_s for the envelope), because at
 //! a kink both functions have corners that a grid would only resolve to first order. The depth
 //! reported is the largest of those found at up to five angles of each zone: the sharpest, and four
-//! spread evenly over the zone's angles. Zones shallower than 0.1 nm (a radial section grazing a
+//! spread evenly over the zone's angles. At a kink the surface reports, the residual is read
+//! against the surface at the kink and just either side of it: where the surface jumps there
+//! (a neighbour-set switch of scattered data) the lower side is the form error, and the value
+//! exactly at the kink is either side's by rounding. Zones shallower than 0.1 nm (a radial section grazing a
 //! slope kink) are counted but not listed.
 
 use crate::parallel::{fill_chunks, workers};
@@ -360,10 +363,11 @@ fn measure(
             .map(|c| (c.1, flag(c)))
             .collect();
         let kinks: Vec<f64> = row.iter().filter_map(|(_, f)| f.exact).collect();
-        // A reported kink is the bottom of its valley: the residual peaks there exactly.
+        // A reported kink is the bottom of its valley: the residual peaks there exactly, on
+        // the lower side where the surface jumps (a neighbour-set switch of scattered data).
         let mut candidates = Vec::new();
         for &t in &kinks {
-            candidates.push((t, section.residual_at(t, delta)?));
+            candidates.push((t, section.residual_at_kink(t, delta)?));
         }
         // Sampled flags away from reported kinks need the general search.
         let sampled: Vec<usize> = row
@@ -475,9 +479,23 @@ impl<'a> Envelope<'a> {
         self.surface.sag(u * self.c, u * self.s)
     }
 
-    /// The closing residual at u, mm: the nose envelope there (a coarse scan of tool positions
-    /// whose arc covers u, refined by golden-section search) less the sag.
-    fn residual_at(&self, u: f64, delta: f64) -> Result<f64, UndefinedError> {
+    /// The closing residual at a reported kink u, mm: the nose envelope there less the surface,
+    /// read at u and either side ([`KINK_SIDE`]): where it jumps, the lower side leaves the
+    /// larger residual.
+    fn residual_at_kink(&self, u: f64, delta: f64) -> Result<f64, UndefinedError> {
+        let step = KINK_SIDE * u.abs().max(1.0);
+        let lowest = [u - step, u + step]
+            .into_iter()
+            .filter(|v| v.abs() <= self.part_radius)
+            .try_fold(self.sag(u)?, |m, v| {
+                Ok::<_, UndefinedError>(m.min(self.sag(v)?))
+            })?;
+        Ok((self.envelope_at(u, delta)? - lowest).max(0.0))
+    }
+
+    /// The nose envelope at u, mm: a coarse scan of tool positions whose arc covers u, refined
+    /// by golden-section search.
+    fn envelope_at(&self, u: f64, delta: f64) -> Result<f64, UndefinedError> {
         let lo = (u - self.half_width).max(-self.part_radius);
         let hi = (u + self.half_width).min(self.part_radius);
         let step = ((hi - lo) / RESIDUAL_SCAN as f64).min(delta);
@@ -493,7 +511,7 @@ impl<'a> Envelope<'a> {
         let (_, cut) = golden((best.0 - step).max(lo), (best.0 + step).min(hi), |q| {
             Ok(-self.arc(self.center(q)?, u - q))
         })?;
-        Ok((-cut).min(best.1) - self.sag(u)?).map(|r| r.max(0.0))
+        Ok((-cut).min(best.1))
     }
 
     /// The largest closing residual for u in `[lo, hi]`: (u, residual), mm.
@@ -662,6 +680,79 @@ mod tests {
         assert!(z.rho_min_mm <= 2.0 && z.rho_max_mm >= 2.0);
         // The ring spans all angles.
         assert_eq!((z.theta_to_deg - z.theta_from_deg + 360.0) % 360.0, 359.0);
+    }
+
+    /// The groove with its outer wall lowered by `step` at ρ₀ (a jump, as where scattered
+    /// data's neighbour set switches), the kink reported on the radial sections.
+    #[derive(Debug)]
+    struct SteppedGroove {
+        groove: Groove,
+        step: f64,
+    }
+
+    impl Surface for SteppedGroove {
+        fn local(&self, x: f64, y: f64) -> Result<Local, UndefinedError> {
+            let mut l = self.groove.local(x, y)?;
+            if x.hypot(y) > self.groove.rho0 {
+                l.z -= self.step;
+            }
+            Ok(l)
+        }
+        fn slope_kinks(&self, _line: Line, t0: f64, t1: f64, out: &mut Vec<f64>) {
+            let rho0 = self.groove.rho0;
+            out.extend([-rho0, rho0].into_iter().filter(|t| *t > t0 && *t < t1));
+        }
+        fn feature_length_mm(&self) -> f64 {
+            0.5
+        }
+        fn describe(&self) -> String {
+            "stepped groove".into()
+        }
+    }
+
+    #[test]
+    fn a_stepped_groove_is_measured_on_its_lower_side() {
+        // The surface jumps down by 1 µm at the groove's bottom: the form error there is the
+        // nose envelope less the lower side, which the surface gives just beyond the kink
+        // (exactly at it, the upper one). Against the envelope by brute force: the lowest of
+        // the nose arcs over ρ₀, on a grid of tool positions and again around its best.
+        let (k, r, step, rho0) = (0.2, 0.5, 1e-3, 2.0);
+        let surface = SteppedGroove {
+            groove: Groove { k, rho0 },
+            step,
+        };
+        let nose = NoseCompensator::new(
+            &ToolSpec {
+                nose_radius_mm: r,
+                included_angle_deg: 100.0,
+                ..ToolSpec::with_nose_radius(0.0)
+            },
+            0.5,
+            4.0,
+        )
+        .unwrap();
+        let zones = concave_zones(&surface, &nose, 4.0, &mut crate::progress::ignore)
+            .unwrap()
+            .zones;
+        let deepest = zones.iter().map(|z| z.depth_um).fold(0.0, f64::max);
+        let arc_at_rho0 = |p: f64| {
+            let zc = nose.compensate(&surface, p, 1.0, 0.0).unwrap().z_center;
+            zc - (r * r - (rho0 - p) * (rho0 - p)).sqrt()
+        };
+        let lowest = |from: f64, to: f64, n: usize| {
+            (0..=n)
+                .map(|i| from + (to - from) * i as f64 / n as f64)
+                .map(|p| (arc_at_rho0(p), p))
+                .fold((f64::INFINITY, from), |b, c| if c.0 < b.0 { c } else { b })
+        };
+        let (_, p) = lowest(rho0 - 0.9 * r, rho0 + 0.9 * r, 2_000);
+        let (cut, _) = lowest(p - 1e-3, p + 1e-3, 20_000);
+        let expect_um = (cut - (-step)) * 1e3;
+        assert!(expect_um > 1.0, "{expect_um}");
+        assert!(
+            (deepest - expect_um).abs() < 1e-3,
+            "{deepest} µm vs {expect_um} µm"
+        );
     }
 
     #[test]

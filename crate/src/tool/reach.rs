@@ -648,11 +648,9 @@ mod tests {
         }
     }
 
-    #[test]
-    fn a_v_groove_leaves_the_closed_form_fillet() {
-        // The nose rests on both walls: its tip stays r·(1/cos α − 1) above the groove bottom.
-        let (k, r) = (0.2, 0.5);
-        let groove = Groove { k, rho0: 2.0 };
+    /// The concave zones of `surface` (part radius 4 mm) under a nose of radius r and included
+    /// angle 100°, and that nose.
+    fn zones_under(surface: &dyn Surface, r: f64) -> (NoseCompensator, Vec<ConcaveZone>) {
         let nose = NoseCompensator::new(
             &ToolSpec {
                 nose_radius_mm: r,
@@ -663,9 +661,18 @@ mod tests {
             4.0,
         )
         .unwrap();
-        let zones = concave_zones(&groove, &nose, 4.0, &mut crate::progress::ignore)
+        let zones = concave_zones(surface, &nose, 4.0, &mut crate::progress::ignore)
             .unwrap()
             .zones;
+        (nose, zones)
+    }
+
+    #[test]
+    fn a_v_groove_leaves_the_closed_form_fillet() {
+        // The nose rests on both walls: its tip stays r·(1/cos α − 1) above the groove bottom.
+        let (k, r) = (0.2, 0.5);
+        let groove = Groove { k, rho0: 2.0 };
+        let (_, zones) = zones_under(&groove, r);
         assert_eq!(zones.len(), 1, "{zones:?}");
         let z = &zones[0];
         let alpha = k.atan();
@@ -721,19 +728,7 @@ mod tests {
             groove: Groove { k, rho0 },
             step,
         };
-        let nose = NoseCompensator::new(
-            &ToolSpec {
-                nose_radius_mm: r,
-                included_angle_deg: 100.0,
-                ..ToolSpec::with_nose_radius(0.0)
-            },
-            0.5,
-            4.0,
-        )
-        .unwrap();
-        let zones = concave_zones(&surface, &nose, 4.0, &mut crate::progress::ignore)
-            .unwrap()
-            .zones;
+        let (nose, zones) = zones_under(&surface, r);
         let deepest = zones.iter().map(|z| z.depth_um).fold(0.0, f64::max);
         let arc_at_rho0 = |p: f64| {
             let zc = nose.compensate(&surface, p, 1.0, 0.0).unwrap().z_center;

@@ -88,25 +88,28 @@ thread_local! {
 /// A local system kept: the surface, the neighbour set and its interpolant.
 type Kept = (u64, NeighbourSet, LocalRbf);
 
-/// The slot of surface `id`'s neighbour set `set` (FxHash's multiply-rotate mixing, the top bits).
-fn slot(id: u64, set: &NeighbourSet) -> usize {
+/// FxHash's multiply-rotate mixing of `words` after the surface `id`: the top `bits` bits.
+fn hash_bits(id: u64, words: impl Iterator<Item = u64>, bits: u32) -> usize {
     const K: u64 = 0x517c_c1b7_2722_0a95;
-    let h = set.indices().iter().fold(id.wrapping_mul(K), |h, &i| {
-        (h.rotate_left(5) ^ u64::from(i)).wrapping_mul(K)
+    let h = words.fold(id.wrapping_mul(K), |h, w| {
+        (h.rotate_left(5) ^ w).wrapping_mul(K)
     });
-    (h >> (64 - RBF_SLOTS.trailing_zeros())) as usize
+    (h >> (64 - bits)) as usize
+}
+
+/// The slot of surface `id`'s neighbour set `set`.
+fn slot(id: u64, set: &NeighbourSet) -> usize {
+    let words = set.indices().iter().map(|&i| u64::from(i));
+    hash_bits(id, words, RBF_SLOTS.trailing_zeros())
 }
 
 /// The first of the [`LINE_WAYS`] slots of surface `id`'s line.
 fn line_ways(id: u64, line: &Line) -> usize {
-    const K: u64 = 0x517c_c1b7_2722_0a95;
-    let h = [line.x0, line.y0, line.c, line.s]
-        .iter()
-        .fold(id.wrapping_mul(K), |h, v| {
-            (h.rotate_left(5) ^ v.to_bits()).wrapping_mul(K)
-        });
+    let words = [line.x0, line.y0, line.c, line.s]
+        .map(f64::to_bits)
+        .into_iter();
     let sets = LINE_SLOTS / LINE_WAYS;
-    (h >> (64 - sets.trailing_zeros())) as usize * LINE_WAYS
+    hash_bits(id, words, sets.trailing_zeros()) * LINE_WAYS
 }
 
 /// The pieces of constant `n`-neighbour set along `line` over `[t0, t1]`

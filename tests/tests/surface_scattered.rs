@@ -684,17 +684,21 @@ fn every_point_of_a_planned_path_touches_without_cutting() {
     // 0.05 mm nose of 80°. The check evaluates a second copy of the surface (no shared
     // caches) and adds the oracle's kinks to 700 nose-angle samples (Δa ≤ 2e-3),
     // more where the sampled curvature makes the bound K·Δa²/8 (K = r·(1 + 2|f′|) + 2r²|f″|)
-    // exceed 0.1·TOUCH; it is checked per point below 0.2·TOUCH.
-    let points = jittered(lenslet, 0.06, 0.75, 0.2, 21);
-    let text = csv(&points);
-    let samples = Samples::from_points(&points).unwrap();
+    // exceed 0.1·TOUCH; it is checked per point below 0.2·TOUCH. The same lenslet on the
+    // regular grid gets the paper's L1 kernel, whose samples are read from the cubics of its
+    // section (`line_section`), checked here against the surface's own evaluation.
+    let jittered_points = jittered(lenslet, 0.06, 0.75, 0.2, 21);
+    let grid_points = jittered(lenslet, 0.06, 0.75, 0.0, 21);
     // Shepard's switches are found by the same walk as the four-point mean's (and scanned in
     // every_jump_and_slope_kink_is_reported). The oracle also offers the L1 kernel's
     // axis-line crossings; for the Euclidean kernel they are merely extra samples.
-    for (method, n) in [
-        (r#""rbf","rbf_distance":"euclidean""#, 8),
-        (r#""four_point_mean""#, 4),
+    for (method, n, points) in [
+        (r#""rbf","rbf_distance":"euclidean""#, 8, &jittered_points),
+        (r#""four_point_mean""#, 4, &jittered_points),
+        (r#""rbf","rbf_distance":"l1""#, 8, &grid_points),
     ] {
+        let text = csv(points);
+        let samples = Samples::from_points(points).unwrap();
         let job = format!(
             r#"{{"name":"scattered","part":{{"diameter_mm":1.1}},
                 "surface":{{"type":"scattered","method":{method},"data":{{"text":{}}}}},
@@ -821,6 +825,126 @@ fn kink_queries_leave_the_surface_unchanged() {
         let (a, b): (Local, Local) = (f.local(x, y).unwrap(), g.local(x, y).unwrap());
         assert_eq!(a, b, "t {t}");
     }
+}
+
+#[test]
+fn the_kept_section_is_the_surfaces_own_along_the_line() {
+    // After the kinks of a line are asked for, the L1 RBF answers samples on that line from the
+    // cubics of its section (`line_section`): each must be what the surface's own jet gives
+    // there, for every kernel variant, on lines along the grid's axes (whose data crossings
+    // fall on the walk's chunk ends) and across them, at dense samples and beside every kink.
+    let h = 0.04;
+    let smooth_data = grid(&smooth, h, 0.6);
+    let lenslet_data = grid(&|x, y| lenslet(x / 0.5, y / 0.5) * 0.5, h, 0.6);
+    let (mut kept, mut asked) = (0, 0);
+    let mut worst = [0.0f64; 3];
+    for data in [&smooth_data, &lenslet_data] {
+        for (name, spec) in grid_variants() {
+            let f = build(&spec, data.clone());
+            for degrees in [0.0f64, 90.0, 37.0, 180.0 + 12.5] {
+                let (s, c) = degrees.to_radians().sin_cos();
+                let (s, c) = if degrees == 90.0 { (1.0, 0.0) } else { (s, c) };
+                let line = Line::radial(c, s);
+                let (t0, t1) = (-0.45, 0.35);
+                let mut kinks = Vec::new();
+                f.slope_kinks(line, t0, t1, &mut kinks);
+                let mut ts: Vec<f64> = (0..=3000)
+                    .map(|i| t0 + (t1 - t0) * i as f64 / 3000.0)
+                    .collect();
+                ts.extend(
+                    kinks
+                        .iter()
+                        .flat_map(|k| [k - 1e-12, k + 1e-12, k - 1e-9, k + 1e-9]),
+                );
+                for t in ts {
+                    asked += 1;
+                    let Some(r) = f.kept_radial(c, s, t) else {
+                        continue;
+                    };
+                    kept += 1;
+                    let r = r.unwrap();
+                    let own = f.local(t * c, t * s).unwrap().radial(c, s);
+                    let d = [
+                        (r.z - own.z).abs(),
+                        (r.slope - own.slope).abs(),
+                        (r.curvature_term - own.curvature_term).abs(),
+                    ];
+                    assert!(
+                        d[0] <= 1e-15 && d[1] <= 1e-13 && d[2] <= 1e-11,
+                        "{name} at {degrees}°, t {t}: {r:?} against {own:?}"
+                    );
+                    for k in 0..3 {
+                        worst[k] = worst[k].max(d[k]);
+                    }
+                }
+                // Beyond the hull the kept section says so as the surface does (away from the
+                // chunks' ends, multiples of 0.02 mm, where it leaves the answer to the surface).
+                f.slope_kinks(line, 0.5, 0.9, &mut Vec::new());
+                let beyond = f.kept_radial(c, s, 0.8731).expect("a kept section");
+                assert!(beyond.is_err(), "{name} at {degrees}°: {beyond:?}");
+            }
+        }
+    }
+    // Nearly every sample is read from the section (the others lie within 1e-13 mm of a
+    // switch or a chunk's end, where the surface's kd-tree decides).
+    assert!(kept as f64 > 0.99 * asked as f64, "{kept} of {asked}");
+    eprintln!("largest differences: {worst:?}");
+}
+
+/// The kinks of `[t0, t1]` along `line` from a fresh walk of that range alone: the switches,
+/// and the L1 kernel's crossings of each piece's data points' axis lines inside the piece.
+fn fresh_kinks(f: &Scattered, line: Line, t0: f64, t1: f64) -> Vec<f64> {
+    let mut pieces = Vec::new();
+    f.pieces(line, t0, t1, &mut pieces);
+    let mut out: Vec<f64> = pieces.iter().skip(1).map(|p| p.start).collect();
+    for (k, piece) in pieces.iter().enumerate() {
+        let end = pieces.get(k + 1).map_or(t1, |p| p.start);
+        for &i in piece.set.indices() {
+            let p = f.samples().points[i as usize];
+            for (to, dir) in [(p[0], line.c), (p[1], line.s)] {
+                if dir != 0.0 && (to / dir) > piece.start && (to / dir) < end {
+                    out.push(to / dir);
+                }
+            }
+        }
+    }
+    out.sort_by(f64::total_cmp);
+    out.dedup();
+    out.retain(|t| *t > t0 && *t < t1);
+    out
+}
+
+#[test]
+fn kinks_from_kept_chunks_are_those_of_a_fresh_walk() {
+    // The L1 kernel's kinks come from the chunks kept for a line, each made once: for ranges
+    // sliding along a line as a spiral's arcs ask for them, back outward and apart, on lines
+    // along the grid's axes (data crossings on the chunks' ends) and across them, they must be
+    // those of a fresh walk of each range, to the bit.
+    let f = build(&spec(Method::Rbf), grid(&smooth, 0.04, 0.6));
+    let mut ranges: Vec<[f64; 2]> = (0..60)
+        .map(|k| {
+            let centre = 0.4 - 0.013 * k as f64;
+            [centre - 0.15, centre + 0.15]
+        })
+        .collect();
+    ranges.extend([[0.2, 0.5], [-0.55, -0.3], [-0.5, 0.5], [0.1, 0.1 + 1e-9]]);
+    let mut count = 0;
+    for degrees in [0.0f64, 90.0, 37.0, 180.0 + 12.5] {
+        let (s, c) = degrees.to_radians().sin_cos();
+        let (s, c) = if degrees == 90.0 { (1.0, 0.0) } else { (s, c) };
+        let line = Line::radial(c, s);
+        for &[t0, t1] in &ranges {
+            let mut kept = Vec::new();
+            f.slope_kinks(line, t0, t1, &mut kept);
+            assert_eq!(
+                kept,
+                fresh_kinks(&f, line, t0, t1),
+                "{degrees}° [{t0}, {t1}]"
+            );
+            count += kept.len();
+        }
+    }
+    assert!(count > 5_000, "{count}");
 }
 
 /// The paper's L1 kernel on irregular points: local systems that are solvable yet wild give

@@ -279,6 +279,17 @@ pub trait Surface: Send + Sync + std::fmt::Debug {
         let _ = (line, t0, t1, out);
     }
 
+    /// The radial section at signed radius `rho` of the line through the axis in direction
+    /// `(c, s)` — what `local(ρc, ρs)` gives seen along that line ([`Local::radial`]), to the
+    /// rounding of either — where the surface keeps that line's section at hand from the last
+    /// [`Surface::slope_kinks`] asked about it (scattered data with the L1 RBF:
+    /// [`crate::surface::scattered::interpolate::line_section`]). `None` where it does not
+    /// (the default): the caller then asks [`Surface::local`].
+    fn kept_radial(&self, c: f64, s: f64, rho: f64) -> Option<Result<Radial, UndefinedError>> {
+        let _ = (c, s, rho);
+        None
+    }
+
     /// A radius, mm, about `(x, y)` within which the surface has no slope kink: a stretch of
     /// any line inside that disc holds none of [`Surface::slope_kinks`]. The compensation then
     /// need not ask for the kinks under a short step. Infinite where there are none (the

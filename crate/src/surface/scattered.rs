@@ -26,7 +26,10 @@
 //! maximum over the nose arc sees the higher side of every jump: the path does not cut into
 //! the interpolated surface (checked by brute force in `tests/tests/surface_scattered.rs`).
 //! Between reported points each section is a cubic polynomial (RBF), a smooth rational
-//! function (Shepard), a constant (four-point mean) or a cubic patch (Hermite).
+//! function (Shepard), a constant (four-point mean) or a cubic patch (Hermite). The L1 RBF's
+//! cubics of a line are kept with the line's walk once its kinks are asked for, and the
+//! compensation's samples on that line read them instead of evaluating the surface
+//! ([`Surface::kept_radial`], [`interpolate::line_section`]).
 //! [`Surface::feature_length_mm`] is twice the data spacing.
 //!
 //! **Scattered points.** On a regular grid every local RBF system is well conditioned
@@ -40,11 +43,13 @@
 #[path = "interpolate/mod.rs"]
 pub mod interpolate;
 
-use super::{Line, Local, PartDisc, Surface, UndefinedError};
+use super::{Line, Local, PartDisc, Radial, Surface, UndefinedError};
 use crate::field::{FieldError, finite, in_range};
 use crate::surface::DataFile;
+use interpolate::cache::{Along, Made};
 use interpolate::data::{Grid, Samples, duplicate_error};
 use interpolate::hull::ConvexHull;
+use interpolate::line_section::{self, LineSection};
 use interpolate::neighbours::NeighbourSet;
 use interpolate::neighbours::{MAX_NEIGHBOURS, NeighbourIndex, Piece};
 use interpolate::rbf::{Distance, LocalRbf, Polynomial, RbfSettings};
@@ -394,6 +399,43 @@ impl Scattered {
         }
     }
 
+    /// What the L1 RBF makes of a chunk's pieces along `line` (the last ending at `end`): the
+    /// crossings of the axis lines through each piece's neighbours at or after its start and
+    /// before its end, and the cubic stretches between them ([`line_section`]).
+    fn made_of(&self, line: Line, (pieces, end): (&[Piece], f64)) -> Made {
+        let mut kinks = Vec::new();
+        for (k, piece) in pieces.iter().enumerate() {
+            let piece_end = pieces.get(k + 1).map_or(end, |p| p.start);
+            let from = kinks.len();
+            for &i in piece.set.indices() {
+                let p = self.samples.points[i as usize];
+                for (to, at, dir) in [(p[0], line.x0, line.c), (p[1], line.y0, line.s)] {
+                    if dir != 0.0 {
+                        let t = (to - at) / dir;
+                        if t >= piece.start && t < piece_end {
+                            kinks.push(t);
+                        }
+                    }
+                }
+            }
+            kinks[from..].sort_by(f64::total_cmp);
+        }
+        kinks.dedup();
+        let cubic = |piece: &Piece, mid: f64| {
+            let solve = || {
+                let (c, z, n) = self.gather(&piece.set);
+                LocalRbf::solve(&c[..n], &z[..n], &self.rbf)
+            };
+            let along = |f: &LocalRbf| f.cubic_along(line, mid);
+            cache::with_local_rbf(self.id, piece.set, solve, along)
+                .ok()
+                .flatten()
+        };
+        let mut stretches = Vec::new();
+        line_section::stretches((pieces, end), &kinks, cubic, &mut stretches);
+        Made { kinks, stretches }
+    }
+
     fn grid(&self) -> Option<&Grid> {
         self.samples.grid.as_ref()
     }
@@ -519,36 +561,43 @@ impl Surface for Scattered {
     }
 
     /// Neighbour-set switches (value jumps) and, for the L1 RBF, the crossings of the axis
-    /// lines through each piece's neighbours (slope jumps).
+    /// lines through each piece's neighbours (slope jumps), both from the chunks of the walk
+    /// kept for the line ([`cache::along`]); the L1 RBF's section along the line is kept for
+    /// the samples that follow ([`Surface::kept_radial`]).
     fn slope_kinks(&self, line: Line, t0: f64, t1: f64, out: &mut Vec<f64>) {
         if self.method == Method::Hermite
             || t1.partial_cmp(&t0) != Some(std::cmp::Ordering::Greater)
         {
             return;
         }
-        let mut pieces = Vec::new();
-        cache::pieces_along(self.id, &self.index, (line, self.n), [t0, t1], &mut pieces);
-        let mut mine: Vec<f64> = pieces.iter().skip(1).map(|p| p.start).collect();
-        if self.method == Method::Rbf && self.rbf.distance == Distance::L1 {
-            for (k, piece) in pieces.iter().enumerate() {
-                let end = pieces.get(k + 1).map_or(t1, |p| p.start);
-                for &i in piece.set.indices() {
-                    let p = self.samples.points[i as usize];
-                    for (to, from, dir) in [(p[0], line.x0, line.c), (p[1], line.y0, line.s)] {
-                        if dir != 0.0 {
-                            let t = (to - from) / dir;
-                            if t > piece.start && t < end {
-                                mine.push(t);
-                            }
-                        }
-                    }
-                }
+        let l1 = self.method == Method::Rbf && self.rbf.distance == Distance::L1;
+        let make = |pieces: &[Piece], end: f64| {
+            if l1 {
+                self.made_of(line, (pieces, end))
+            } else {
+                Made::default()
             }
-        }
+        };
+        let mut got = Along::default();
+        let range = [t0, t1];
+        cache::along(self.id, &self.index, (line, self.n), range, &make, &mut got);
+        let mut mine: Vec<f64> = got.pieces.iter().skip(1).map(|p| p.start).collect();
+        mine.extend_from_slice(&got.kinks);
         mine.sort_by(f64::total_cmp);
         mine.dedup();
         out.extend(mine.into_iter().filter(|t| *t > t0 && *t < t1));
-        cache::remember_pieces(self.id, line, t1, pieces);
+        if l1 {
+            cache::remember_section(LineSection::new(self.id, line, got.stretches));
+        }
+        cache::remember_pieces(self.id, line, t1, got.pieces);
+    }
+
+    /// From the section of the last line asked about, where it is that line
+    /// ([`interpolate::line_section`]).
+    fn kept_radial(&self, c: f64, s: f64, rho: f64) -> Option<Result<Radial, UndefinedError>> {
+        let radial = cache::radial_on_last_line(self.id, Line::radial(c, s), rho)?;
+        let (x, y) = (rho * c, rho * s);
+        Some(self.check_domain(x, y).map(|()| radial))
     }
 
     fn describe(&self) -> String {

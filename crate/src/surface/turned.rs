@@ -10,7 +10,7 @@
 //! A line `(x₀, y₀) + t·(c, s)` is the design's line `(−x₀, y₀) + t·(−c, s)` with the same
 //! parameter, so slope kinks carry over unchanged.
 
-use super::{Line, Local, SectionBounds, Surface, UndefinedError};
+use super::{Line, Local, Radial, SectionBounds, Surface, UndefinedError};
 
 /// A surface turned 180° about Y.
 #[derive(Debug)]
@@ -59,6 +59,19 @@ impl Surface for Turned {
             s: line.s,
         };
         self.inner.slope_kinks(design, t0, t1, out);
+    }
+
+    /// The design's section along the mirrored line, turned over.
+    fn kept_radial(&self, c: f64, s: f64, rho: f64) -> Option<Result<Radial, UndefinedError>> {
+        let r = self.inner.kept_radial(-c, s, rho)?;
+        Some(
+            r.map(|r| Radial {
+                z: -r.z,
+                slope: -r.slope,
+                curvature_term: -r.curvature_term,
+            })
+            .map_err(|e| Self::at(rho * c, e)),
+        )
     }
 
     /// The design's at the mirrored point (x → −x keeps distances).

@@ -57,6 +57,11 @@
 //! farther than the step moves the contact). The contact found is the cold start's to the tolerance
 //! (tests/tests/compensation.rs).
 //!
+//! **Kept sections.** A surface that keeps the section of the line it was last asked for
+//! kinks on ([`Surface::kept_radial`]: the L1 RBF of scattered data, a cubic between its kinks)
+//! answers the samples on the arc's line from it; the contact's height and jet are then the
+//! surface's own, evaluated once at the angle found.
+//!
 //! The arc is cut at the part's edge: beyond `limit_radius_mm` there is no material.
 //!
 //! **Measured edge** (`tool.waviness`, [`super::waviness`]): the edge has the radius
@@ -70,7 +75,7 @@
 use super::waviness::Waviness;
 use crate::field::{FieldError, in_range, non_negative};
 use crate::job::ToolSpec;
-use crate::surface::{Line, Local, Surface, UndefinedError};
+use crate::surface::{Line, Local, Radial, Surface, UndefinedError};
 
 /// Where the nose touches the surface for one spiral point.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -385,6 +390,7 @@ impl NoseCompensator {
             s,
             r,
             edge: self.waviness.as_ref(),
+            kept: true,
         };
         let (lo, hi) = self.arc_range(rho_s);
         let kinks = |from, to, sine| self.kinks_near(&section, lo, hi, [from, to], sine);
@@ -399,6 +405,7 @@ impl NoseCompensator {
             }
             None => self.search(&section, lo, hi)?,
         };
+        let (best, local) = section.with_jet(best)?;
         let at_arc_end =
             (best.a - self.half_angle).abs() < 1e-12 || (best.a + self.half_angle).abs() < 1e-12;
         let (tip, reach) = match &self.waviness {
@@ -410,11 +417,11 @@ impl NoseCompensator {
             z_tip: best.f - tip,
             angle: best.a,
             rho: rho_s + reach * best.sa,
-            z: best.local.z,
+            z: local.z,
             at_arc_end: at_arc_end && best.g.abs() > 1e-12 * r,
             sin_cos: (best.sa, best.ca),
         };
-        Ok((contact, best.local))
+        Ok((contact, local))
     }
 
     /// The largest F over `[lo, hi]` by the sampled search of the whole arc (module docs).
@@ -591,6 +598,7 @@ fn grid_angle(lo: f64, hi: f64, n: usize, i: usize) -> f64 {
 }
 
 /// The radial section through one spiral point and the nose arc above it.
+#[derive(Clone, Copy)]
 struct Section<'a> {
     surface: &'a dyn Surface,
     rho_s: f64,
@@ -598,6 +606,9 @@ struct Section<'a> {
     s: f64,
     r: f64,
     edge: Option<&'a Waviness>,
+    /// Whether samples may be read from the surface's kept section of the line
+    /// ([`Surface::kept_radial`]).
+    kept: bool,
 }
 
 /// F(a), F′(a), F″(a) and the sag at the arc point.
@@ -610,8 +621,11 @@ struct Sample {
     f: f64,
     g: f64,
     gg: f64,
-    /// The surface's jet at the arc point.
-    local: Local,
+    /// The arc point's signed radius on the section's line.
+    rho: f64,
+    /// The surface's jet there, unless the sample was read from the surface's kept section
+    /// ([`Surface::kept_radial`]).
+    local: Option<Local>,
 }
 
 impl Section<'_> {
@@ -648,8 +662,7 @@ impl Section<'_> {
         }
         let r = self.r;
         let rho = self.rho_s + r * sa;
-        let local = self.surface.local(rho * self.c, rho * self.s)?;
-        let l = local.radial(self.c, self.s);
+        let (l, local) = self.radial(rho)?;
         Ok(Sample {
             a,
             sa,
@@ -657,8 +670,42 @@ impl Section<'_> {
             f: l.z + r * ca,
             g: r * ca * l.slope - r * sa,
             gg: r * r * ca * ca * l.curvature_term - r * sa * l.slope - r * ca,
+            rho,
             local,
         })
+    }
+
+    /// The section at signed radius `rho`: from the surface's kept section of this line where
+    /// it has one ([`Surface::kept_radial`]), else from its jet, which comes with it.
+    fn radial(&self, rho: f64) -> Result<(Radial, Option<Local>), UndefinedError> {
+        if self.kept
+            && let Some(kept) = self.surface.kept_radial(self.c, self.s, rho)
+        {
+            return Ok((kept?, None));
+        }
+        let local = self.surface.local(rho * self.c, rho * self.s)?;
+        Ok((local.radial(self.c, self.s), Some(local)))
+    }
+
+    /// `sample` as the surface's own jet gives it, with that jet: evaluated afresh where it was
+    /// read from the kept section, so that the contact's height is the surface's to its last
+    /// bit whichever way the search read it.
+    fn with_jet(&self, sample: Sample) -> Result<(Sample, Local), UndefinedError> {
+        let sample = match sample.local {
+            Some(_) => sample,
+            None => Section {
+                kept: false,
+                ..*self
+            }
+            .at_sin_cos(sample.a, sample.sa, sample.ca)?,
+        };
+        let local = match sample.local {
+            Some(local) => local,
+            None => self
+                .surface
+                .local(sample.rho * self.c, sample.rho * self.s)?,
+        };
+        Ok((sample, local))
     }
 
     /// [`Section::at_sin_cos`] for the measured edge R(a) (see the module docs).
@@ -673,8 +720,7 @@ impl Section<'_> {
         let (u1, u2) = (r1 * sa + rr * ca, r2 * sa + 2.0 * r1 * ca - rr * sa);
         let (v1, v2) = (r1 * ca - rr * sa, r2 * ca - 2.0 * r1 * sa - rr * ca);
         let rho = self.rho_s + rr * sa;
-        let local = self.surface.local(rho * self.c, rho * self.s)?;
-        let l = local.radial(self.c, self.s);
+        let (l, local) = self.radial(rho)?;
         Ok(Sample {
             a,
             sa,
@@ -682,6 +728,7 @@ impl Section<'_> {
             f: l.z + rr * ca,
             g: l.slope * u1 + v1,
             gg: l.curvature_term * u1 * u1 + l.slope * u2 + v2,
+            rho,
             local,
         })
     }
@@ -959,6 +1006,7 @@ mod tests {
                 s,
                 r: 0.5,
                 edge: None,
+                kept: true,
             };
             (theta, section, comp.arc_range(rho))
         })

@@ -2,19 +2,23 @@
 //! pattern reuses heavily: the compensation asks for the slope kinks along a nose arc's line
 //! and then evaluates the surface at points of that same line, in order.
 //!
-//! - **Line windows**: the walked chunks of the neighbour-set walk along recent lines
-//!   ([`pieces_along`]), in a table of [`LINE_SLOTS`] entries, [`LINE_WAYS`] to a hash of the
+//! - **Line windows**: the walked chunks of the neighbour-set walk along recent lines, with
+//!   what the surface made of each chunk (its kinks and the L1 RBF's cubic stretches,
+//!   [`Made`]; [`along`]), in a table of [`LINE_SLOTS`] entries, [`LINE_WAYS`] to a hash of the
 //!   line, the least recently used of them giving way: each holds the chunks around the last
 //!   range asked for on its line. The nose arcs of a constant-angle spiral's points at one
 //!   angle lie on one line (the same bits on every turn: [`crate::path::Spiral::sin_cos`]), a
 //!   feed apart, and the concave-zone report compensates many points of each of its sections:
 //!   a chunk is walked once for many arcs instead of once for each. The chunks are those of
 //!   the uncached walk ([`NeighbourIndex::chunk_pieces`], anchored at t = 0), so the pieces
-//!   are the same bits.
+//!   are the same bits; ranges longer than `MAX_WINDOW_CHUNKS` chunks are walked unkept.
 //! - **Pieces**: the neighbour sets along the last line ([`remember_pieces`]); a query on that
 //!   line takes its piece's set instead of a kd-tree search ([`set_on_last_line`]), except
 //!   within [`SWITCH_BAND`] of a switch, where the search decides (the two agree everywhere
 //!   else: `neighbours::tests` and `tests/tests/surface_scattered.rs`).
+//! - **Section**: the L1 RBF along the last line as its cubics between kinks
+//!   ([`remember_section`], [`super::line_section`]): a sample of the compensation on that
+//!   line is a cubic's value ([`radial_on_last_line`]), away from the switches as above.
 //! - **Local systems**: solved RBF interpolants in a table of [`RBF_SLOTS`] entries indexed by
 //!   a hash of the neighbour set, a new one taking its slot's place ([`with_local_rbf`]): the
 //!   samples of one nose arc go back and forth across its pieces, and the next point's arc,
@@ -23,19 +27,23 @@
 //!
 //! Measured on the scattered example (`crate/jobs/scattered-lens-array.json`, 180 001 points,
 //! 2 cores): 56–59 s before the windows, 29–32 s with them (peak memory 41 → 70 MB), the
-//! program byte-identical. The walk fell from about 45 % of the time to 3 %; the rest is the
+//! program byte-identical. The walk fell from about 45 % of the time to 3 %; the rest was the
 //! search of each arc, about 250 surface evaluations a point (every switch sampled either
-//! side). With the windows, 8 192 system slots gave 13.8 s on the example at a feed of
-//! 0.1 mm/rev against 16.3 s with 1 024 and 14.4 s with 32 768; 65 536 slots gave 28 s at the
-//! example's feed for 90 MB more.
+//! side), a fifth of it solving systems the table had lost. With the windows, 8 192 system
+//! slots gave 13.8 s on the example at a feed of 0.1 mm/rev against 16.3 s with 1 024 and
+//! 14.4 s with 32 768; 65 536 slots gave 28 s at the example's feed for 90 MB more. With the
+//! cubics kept in the windows and read for those evaluations, 16–18 s (peak memory 108 MB),
+//! the program byte-identical again.
 //!
 //! All are keyed by a surface identity ([`next_id`]), so surfaces never share entries; the
 //! values returned are those a fresh computation gives.
 
+use super::line_section::{LineSection, Stretch};
 use super::neighbours::{NeighbourIndex, NeighbourSet, Piece, clip};
 use super::rbf::LocalRbf;
-use crate::surface::Line;
+use crate::surface::{Line, Radial};
 use std::cell::RefCell;
+use std::collections::VecDeque;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Distance from a switch (mm, plus 1e-15 of |t|) within which a query on the remembered line
@@ -67,7 +75,7 @@ struct LinePieces {
     pieces: Vec<Piece>,
 }
 
-/// The walked chunks `first..=last` of one line of one surface, their pieces in order.
+/// The walked chunks `first..` of one line of one surface, in order.
 struct LineWindow {
     /// When it was last asked for (the thread's count of requests).
     used: u64,
@@ -75,13 +83,42 @@ struct LineWindow {
     line: Line,
     n: usize,
     first: i64,
-    last: i64,
-    walked: Vec<Piece>,
+    chunks: VecDeque<Chunk>,
+}
+
+/// What is kept of one chunk of a line: the walk's pieces and what the surface made of them.
+struct Chunk {
+    pieces: Vec<Piece>,
+    made: Made,
+}
+
+/// What a surface makes of a chunk's pieces ([`along`]'s `make`): the slope kinks inside its
+/// pieces, at or after each piece's start and before its end, ascending, and its section's
+/// stretches ([`super::line_section`]), in order; either may be empty.
+#[derive(Debug, Default)]
+pub struct Made {
+    /// The kinks.
+    pub kinks: Vec<f64>,
+    /// The stretches.
+    pub stretches: Vec<Stretch>,
+}
+
+/// What [`along`] hands out for a range of a line.
+#[derive(Debug, Default)]
+pub struct Along {
+    /// The pieces of constant neighbour set, as [`NeighbourIndex::pieces`] gives them.
+    pub pieces: Vec<Piece>,
+    /// The kinks the surface made of the chunks covering the range, ascending (some may lie
+    /// outside it).
+    pub kinks: Vec<f64>,
+    /// Their stretches, in order, covering the range.
+    pub stretches: Vec<Stretch>,
 }
 
 thread_local! {
     static WINDOWS: RefCell<(u64, Vec<Option<LineWindow>>)> = const { RefCell::new((0, Vec::new())) };
     static PIECES: RefCell<Option<LinePieces>> = const { RefCell::new(None) };
+    static SECTION: RefCell<Option<LineSection>> = const { RefCell::new(None) };
     static SYSTEMS: RefCell<Vec<Option<Kept>>> = const { RefCell::new(Vec::new()) };
 }
 
@@ -113,20 +150,25 @@ fn line_ways(id: u64, line: &Line) -> usize {
 }
 
 /// The pieces of constant `n`-neighbour set along `line` over `[t0, t1]`
-/// ([`NeighbourIndex::pieces`]'s, the same bits) for surface `id`, from the chunks kept for
-/// the line, walking and keeping those missing. The window then keeps the chunks of the range
-/// and a quarter of its length either side.
-pub fn pieces_along(
+/// ([`NeighbourIndex::pieces`]'s, the same bits) for surface `id`, and what `make` made of
+/// their chunks, from the chunks kept for the line, walking (and making) and keeping those
+/// missing. The window then keeps the chunks of the range and a quarter of its length either
+/// side; ranges over `MAX_WINDOW_CHUNKS` chunks are walked without keeping. A surface passes
+/// the same `make` to every call: the window keeps what it made.
+pub fn along(
     id: u64,
     index: &NeighbourIndex,
     (line, n): (Line, usize),
     [t0, t1]: [f64; 2],
-    out: &mut Vec<Piece>,
+    make: &dyn Fn(&[Piece], f64) -> Made,
+    out: &mut Along,
 ) {
     let want = index.chunks(t0, t1);
     let (first, last) = (*want.start(), *want.end());
+    let walk = |k: i64| Chunk::walk(index, (line, n), k, make);
     if last.saturating_sub(first) >= MAX_WINDOW_CHUNKS {
-        return index.pieces(line, t0, t1, n, out);
+        let chunks: Vec<Chunk> = want.map(walk).collect();
+        return hand_out(chunks.iter(), [t0, t1], out);
     }
     WINDOWS.with(|c| {
         let (clock, table) = &mut *c.borrow_mut();
@@ -149,8 +191,7 @@ pub fn pieces_along(
                     line,
                     n,
                     first,
-                    last: first - 1,
-                    walked: Vec::new(),
+                    chunks: VecDeque::new(),
                 });
                 oldest
             }
@@ -159,47 +200,93 @@ pub fn pieces_along(
             return;
         };
         window.used = *clock;
-        window.cover(index, first, last);
-        clip(&window.walked, t0, t1, out);
+        window.cover(first, last, walk);
+        let skip = usize::try_from(first - window.first).unwrap_or(0);
+        let count = usize::try_from(last - first + 1).unwrap_or(0);
+        hand_out(window.chunks.iter().skip(skip).take(count), [t0, t1], out);
         let margin = (last - first) / 4 + 1;
-        window.trim(index, first - margin, last + margin);
+        window.trim(first - margin, last + margin);
     });
 }
 
+/// [`along`]'s pieces alone, made of nothing (a surface passes one `make` to every call).
+#[cfg(test)]
+fn pieces_along(
+    id: u64,
+    index: &NeighbourIndex,
+    line_n: (Line, usize),
+    range: [f64; 2],
+    out: &mut Vec<Piece>,
+) {
+    let mut got = Along::default();
+    along(id, index, line_n, range, &|_, _| Made::default(), &mut got);
+    out.append(&mut got.pieces);
+}
+
+/// The pieces of `chunks` (those covering `[t0, t1]`) clipped to the range, their kinks and
+/// stretches, into `out`.
+fn hand_out<'a>(
+    chunks: impl Iterator<Item = &'a Chunk> + Clone,
+    [t0, t1]: [f64; 2],
+    out: &mut Along,
+) {
+    clip(
+        chunks.clone().flat_map(|c| &c.pieces),
+        t0,
+        t1,
+        &mut out.pieces,
+    );
+    for c in chunks {
+        out.kinks.extend_from_slice(&c.made.kinks);
+        out.stretches.extend_from_slice(&c.made.stretches);
+    }
+}
+
+impl Chunk {
+    /// Chunk `k` of `line`, walked for `n` neighbours, and what `make` makes of it.
+    fn walk(
+        index: &NeighbourIndex,
+        (line, n): (Line, usize),
+        k: i64,
+        make: &dyn Fn(&[Piece], f64) -> Made,
+    ) -> Self {
+        let mut pieces = Vec::new();
+        index.chunk_pieces(line, k, n, &mut pieces);
+        let made = make(&pieces, index.chunk_start(k + 1));
+        Self { pieces, made }
+    }
+}
+
 impl LineWindow {
-    /// Walks the chunks of `first..=last` not kept yet (all of them when the window lies apart).
-    fn cover(&mut self, index: &NeighbourIndex, first: i64, last: i64) {
-        if self.walked.is_empty() || last < self.first - 1 || first > self.last + 1 {
-            self.walked.clear();
-            (self.first, self.last) = (first, first - 1);
-        }
-        if first < self.first {
-            let mut before = Vec::new();
-            for k in first..self.first {
-                index.chunk_pieces(self.line, k, self.n, &mut before);
-            }
-            self.walked.splice(0..0, before);
+    /// The chunk after the last kept.
+    fn end(&self) -> i64 {
+        self.first + self.chunks.len() as i64
+    }
+
+    /// Walks the chunks of `first..=last` not kept yet (all of them when the window lies
+    /// apart), each by `walk`.
+    fn cover(&mut self, first: i64, last: i64, walk: impl Fn(i64) -> Chunk) {
+        if self.chunks.is_empty() || last < self.first - 1 || first > self.end() {
+            self.chunks.clear();
             self.first = first;
         }
-        for k in self.last + 1..=last {
-            index.chunk_pieces(self.line, k, self.n, &mut self.walked);
+        for k in (first..self.first).rev() {
+            self.chunks.push_front(walk(k));
+            self.first = k;
         }
-        self.last = self.last.max(last);
+        for k in self.end()..=last {
+            self.chunks.push_back(walk(k));
+        }
     }
 
     /// Drops the chunks outside `first..=last`.
-    fn trim(&mut self, index: &NeighbourIndex, first: i64, last: i64) {
-        if last < self.last {
-            let end = index.chunk_start(last + 1);
-            let keep = self.walked.partition_point(|p| p.start < end);
-            self.walked.truncate(keep);
-            self.last = last;
+    fn trim(&mut self, first: i64, last: i64) {
+        while !self.chunks.is_empty() && self.end() - 1 > last {
+            self.chunks.pop_back();
         }
-        if first > self.first {
-            let start = index.chunk_start(first);
-            let drop = self.walked.partition_point(|p| p.start < start);
-            self.walked.drain(..drop);
-            self.first = first;
+        while self.first < first && !self.chunks.is_empty() {
+            self.chunks.pop_front();
+            self.first += 1;
         }
     }
 }
@@ -232,6 +319,21 @@ pub fn set_on_last_line(id: u64, q: [f64; 2]) -> Option<NeighbourSet> {
         let lo = lp.pieces[k].start;
         let hi = lp.pieces.get(k + 1).map_or(lp.t1, |p| p.start);
         (t - lo > band && hi - t > band).then_some(lp.pieces[k].set)
+    })
+}
+
+/// Remembers the section along the last line asked about ([`LineSection`]).
+pub fn remember_section(section: LineSection) {
+    SECTION.with(|c| *c.borrow_mut() = Some(section));
+}
+
+/// The remembered section of surface `id` at t on `line` (the same bits), away from every
+/// switch as [`set_on_last_line`] asks.
+pub fn radial_on_last_line(id: u64, line: Line, t: f64) -> Option<Radial> {
+    SECTION.with(|c| {
+        let c = c.borrow();
+        let section = c.as_ref().filter(|s| s.is_of(id, &line))?;
+        section.radial_at(t, SWITCH_BAND + 1e-15 * t.abs())
     })
 }
 

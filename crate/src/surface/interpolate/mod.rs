@@ -4,7 +4,8 @@
 //! compares: its radial basis function (eqs 4–6, [`rbf`]), Shepard's inverse distance weighting
 //! ([`shepard`], derivatives by [`jet`](crate::surface::jet)s), the four-point mean
 //! ([`four_point`]) and Hermite (bicubic) interpolation ([`hermite`]); [`cache`] keeps
-//! per-thread work the planner reuses.
+//! per-thread work the planner reuses, among it the RBF's section along the last line asked
+//! about as the cubics it is between kinks ([`line_section`]).
 
 pub mod cache;
 pub mod data;
@@ -12,6 +13,7 @@ pub mod four_point;
 pub mod hermite;
 pub mod hull;
 pub mod kinetic;
+pub mod line_section;
 pub mod neighbours;
 pub mod rbf;
 pub mod shepard;

@@ -312,14 +312,25 @@ impl NeighbourIndex {
 
 /// The pieces of `[t0, t1]` from the pieces of the chunks covering it, in order: the one
 /// holding t0 (starting there), then each later one whose set differs from the one before.
-pub fn clip(walked: &[Piece], t0: f64, t1: f64, out: &mut Vec<Piece>) {
-    let first = walked.partition_point(|p| p.start <= t0).saturating_sub(1);
-    let Some(&Piece { set, .. }) = walked.get(first) else {
+pub fn clip<'a>(
+    walked: impl IntoIterator<Item = &'a Piece>,
+    t0: f64,
+    t1: f64,
+    out: &mut Vec<Piece>,
+) {
+    let mut walked = walked.into_iter().peekable();
+    let Some(mut holding) = walked.next() else {
         return;
     };
-    out.push(Piece { start: t0, set });
-    let mut last = set;
-    for p in &walked[first + 1..] {
+    while let Some(p) = walked.next_if(|p| p.start <= t0) {
+        holding = p;
+    }
+    let mut last = holding.set;
+    out.push(Piece {
+        start: t0,
+        set: last,
+    });
+    for p in walked {
         if p.start >= t1 {
             break;
         }

@@ -29,7 +29,8 @@
 //! that crosses them (reported by `slope_kinks`). At a kink [`LocalRbf::local`] gives the
 //! derivatives of the side towards +x (+y).
 
-use crate::surface::Local;
+use super::line_section::Cubic;
+use crate::surface::{Line, Local};
 use nalgebra::{DMatrix, SMatrix, SVector};
 use serde::{Deserialize, Serialize};
 
@@ -243,6 +244,34 @@ impl LocalRbf {
             l.zyy += a * fyy;
         }
         l
+    }
+}
+
+impl LocalRbf {
+    /// The L1 interpolant along `line` as the cubic in powers of `t − mid` it is on the
+    /// stretch about `mid` that crosses no axis line of a centre (each `ρⱼ` linear there,
+    /// [`super::line_section`]); the side of an axis line through `mid` itself as
+    /// [`LocalRbf::local`] takes it. `None` for the Euclidean distance (no polynomial).
+    pub fn cubic_along(&self, line: Line, mid: f64) -> Option<Cubic> {
+        if self.settings.distance != Distance::L1 {
+            return None;
+        }
+        let s = self.settings.scale_mm;
+        let (x, y) = line.at(mid);
+        let [pz, px, py] = self.polynomial(x, y);
+        let mut k = [pz, px * line.c + py * line.s, 0.0, 0.0];
+        for j in 0..self.n {
+            let p = self.centres[j];
+            let (dx, dy) = (x - p[0], y - p[1]);
+            let beta = (sign(dx) * line.c + sign(dy) * line.s) / s;
+            let [f, f1, f2] = kernel((dx.abs() + dy.abs()) / s, self.settings.c);
+            let a = self.a[j];
+            k[0] += a * f;
+            k[1] += a * f1 * beta;
+            k[2] += a * f2 * beta * beta * 0.5;
+            k[3] -= a * beta * beta * beta;
+        }
+        Some(Cubic { mid, k })
     }
 }
 

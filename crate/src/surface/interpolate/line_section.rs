@@ -1,0 +1,143 @@
+//! A scattered surface along one line as the polynomials it is between its kinks. Paper 004's
+//! RBF with the L1 distance (eq 6, `r = |Δx| + |Δy|`) is a cubic polynomial in the line's
+//! parameter t on every stretch that crosses neither a neighbour-set switch nor an axis line
+//! of one of the set's points ([`super::rbf`], "Smoothness"): there each `rⱼ(t)` is linear,
+//! `rⱼ = αⱼ + βⱼ·(t − m)`, and `φ(α + βτ) = φ(α) + φ′(α)·βτ + φ″(α)·β²τ²/2 − β³τ³` exactly
+//! (φ‴ = −6). Those stretches are what [`crate::surface::Surface::slope_kinks`] reports, so
+//! once a nose arc's line has been asked for its kinks, the compensation's samples of that
+//! line — about 250 a point, both sides of every kink and the arc's grid — each cost a cubic
+//! in Horner form instead of a neighbour lookup, a kept or new local system and its sum over
+//! the neighbours ([`super::cache::radial_on_last_line`]).
+//!
+//! Each cubic is expanded about its stretch's midpoint m, so its powers of `t − m` stay below
+//! the stretch's length and it agrees with the RBF evaluated at the point to the rounding of
+//! either (the tests: within 1e-14 mm of sag). Within [`super::cache::SWITCH_BAND`] of a
+//! switch the section answers nothing, and the caller evaluates the surface itself, whose
+//! kd-tree decides the side there, as before.
+
+use super::neighbours::Piece;
+use crate::surface::{Line, Radial};
+use std::cell::Cell;
+
+/// A cubic in powers of `t − mid`: `k[0] + k[1]·τ + k[2]·τ² + k[3]·τ³`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cubic {
+    /// The point it is expanded about.
+    pub mid: f64,
+    /// The coefficients of τ⁰ … τ³.
+    pub k: [f64; 4],
+}
+
+impl Cubic {
+    /// Its value, slope and second derivative at t.
+    pub fn radial(&self, t: f64) -> Radial {
+        let [k0, k1, k2, k3] = self.k;
+        let tau = t - self.mid;
+        Radial {
+            z: k0 + tau * (k1 + tau * (k2 + tau * k3)),
+            slope: k1 + tau * (2.0 * k2 + 3.0 * tau * k3),
+            curvature_term: 2.0 * k2 + 6.0 * tau * k3,
+        }
+    }
+}
+
+/// A stretch of a line where the section is one cubic.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stretch {
+    /// Where it starts.
+    start: f64,
+    /// The start and end of its piece of the walk.
+    piece: [f64; 2],
+    /// The section there; `None` where the piece's system is singular.
+    cubic: Option<Cubic>,
+}
+
+/// The stretches of `pieces` (the last ending at `end`), each piece cut at the `kinks` inside
+/// it (ascending; others are skipped), each stretch's cubic `cubic(piece, midpoint)` (`None`
+/// where the piece's system is singular), appended to `out`.
+pub fn stretches(
+    (pieces, end): (&[Piece], f64),
+    kinks: &[f64],
+    mut cubic: impl FnMut(&Piece, f64) -> Option<Cubic>,
+    out: &mut Vec<Stretch>,
+) {
+    let mut next_kink = 0;
+    for (k, piece) in pieces.iter().enumerate() {
+        let piece_end = pieces.get(k + 1).map_or(end, |p| p.start);
+        next_kink += kinks[next_kink..].partition_point(|&t| t <= piece.start);
+        let inside = kinks[next_kink..].partition_point(|&t| t < piece_end);
+        let cuts = &kinks[next_kink..next_kink + inside];
+        let starts = std::iter::once(piece.start).chain(cuts.iter().copied());
+        let ends = cuts.iter().copied().chain(std::iter::once(piece_end));
+        for (start, stop) in starts.zip(ends) {
+            out.push(Stretch {
+                start,
+                piece: [piece.start, piece_end],
+                cubic: cubic(piece, 0.5 * (start + stop)),
+            });
+        }
+        next_kink += inside;
+    }
+}
+
+/// The section of one surface along one line: stretches in order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LineSection {
+    id: u64,
+    line: Line,
+    stretches: Vec<Stretch>,
+    /// The stretch read last: the samples of a nose arc mostly ascend along the line.
+    last: Cell<usize>,
+}
+
+impl LineSection {
+    /// The section of surface `id` ([`super::cache::next_id`]) along `line` made of
+    /// `stretches`, in order.
+    pub fn new(id: u64, line: Line, stretches: Vec<Stretch>) -> Self {
+        Self {
+            id,
+            line,
+            stretches,
+            last: Cell::new(0),
+        }
+    }
+
+    /// Whether it is surface `id`'s section along `line`.
+    pub fn is_of(&self, id: u64, line: &Line) -> bool {
+        self.id == id && self.line == *line
+    }
+
+    /// The section at t: `None` outside its stretches, within `band` of the ends of a piece of
+    /// the walk (a neighbour-set switch, or a chunk's end), or on a piece whose system is
+    /// singular.
+    pub fn radial_at(&self, t: f64, band: f64) -> Option<Radial> {
+        let k = self.stretch_at(t)?;
+        self.last.set(k);
+        let s = &self.stretches[k];
+        let [lo, hi] = s.piece;
+        if t - lo > band && hi - t > band {
+            s.cubic.map(|c| c.radial(t))
+        } else {
+            None
+        }
+    }
+
+    /// The last stretch starting at or before t: the one read last or the next where it is,
+    /// else by bisection.
+    fn stretch_at(&self, t: f64) -> Option<usize> {
+        let holds = |k: usize| {
+            self.stretches.get(k).is_some_and(|s| s.start <= t)
+                && self.stretches.get(k + 1).is_none_or(|s| s.start > t)
+        };
+        let last = self.last.get();
+        if holds(last) {
+            return Some(last);
+        }
+        if holds(last + 1) {
+            return Some(last + 1);
+        }
+        self.stretches
+            .partition_point(|s| s.start <= t)
+            .checked_sub(1)
+    }
+}

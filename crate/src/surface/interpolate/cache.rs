@@ -230,6 +230,15 @@ fn hand_out<'a>(
     [t0, t1]: [f64; 2],
     out: &mut Along,
 ) {
+    let (mut pieces, mut kinks, mut stretches) = (0, 0, 0);
+    for c in chunks.clone() {
+        pieces += c.pieces.len();
+        kinks += c.made.kinks.len();
+        stretches += c.made.stretches.len();
+    }
+    out.pieces.reserve(pieces);
+    out.kinks.reserve(kinks);
+    out.stretches.reserve(stretches);
     clip(
         chunks.clone().flat_map(|c| &c.pieces),
         t0,

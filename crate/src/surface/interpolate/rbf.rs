@@ -93,7 +93,7 @@ impl RbfSettings {
         let (dx, dy) = (p[0] - q[0], p[1] - q[1]);
         match self.distance {
             Distance::L1 => (dx.abs() + dy.abs()) / self.scale_mm,
-            Distance::Euclidean => dx.hypot(dy) / self.scale_mm,
+            Distance::Euclidean => (dx * dx + dy * dy).sqrt() / self.scale_mm,
         }
     }
 }
@@ -286,10 +286,12 @@ fn l1_term(dx: f64, dy: f64, s: f64, c: f64) -> [f64; 6] {
 
 /// `[φ, φ_x, φ_y, φ_xx, φ_xy, φ_yy]` of `φ(ρ)`, `ρ = √(dx² + dy²)/s`: with `φ′(ρ)/ρ = 8 − 3ρ`,
 /// `φ_x = (8 − 3ρ)·dx/s²` and `φ_xx = (8 − 3ρ)/s² − 3·dx²/(s⁴ρ)`, `φ_xy = −3·dx·dy/(s⁴ρ)`;
-/// the last terms are bounded and tend to 0 at ρ = 0 (φ is C² there, not C³).
+/// the last terms are bounded and tend to 0 at ρ = 0 (φ is C² there, not C³). The root is
+/// taken of the sum of squares, not by `hypot`, which guards against overflows that distances
+/// between data points never reach and took a fifth of the time of planning on this kernel.
 fn euclidean_term(dx: f64, dy: f64, s: f64, c: f64) -> [f64; 6] {
     let s2 = s * s;
-    let rho = dx.hypot(dy) / s;
+    let rho = (dx * dx + dy * dy).sqrt() / s;
     let f = kernel(rho, c)[0];
     let g = (8.0 - 3.0 * rho) / s2;
     let k = if rho > 0.0 {

@@ -39,7 +39,7 @@ def run(binary, job, nc, report):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("binaries", nargs="*")
     parser.add_argument("--runs", type=int, default=2)
     parser.add_argument("--job", default=os.path.join(ROOT, "crate", "jobs", "scattered-lens-array.json"))

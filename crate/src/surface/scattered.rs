@@ -586,10 +586,8 @@ impl Surface for Scattered {
         mine.sort_by(f64::total_cmp);
         mine.dedup();
         out.extend(mine.into_iter().filter(|t| *t > t0 && *t < t1));
-        if l1 {
-            cache::remember_section(LineSection::new(self.id, line, got.stretches));
-        }
-        cache::remember_pieces(self.id, line, t1, got.pieces);
+        let section = l1.then(|| LineSection::new(got.stretches));
+        cache::remember_line(self.id, (line, t1), got.pieces, section);
     }
 
     /// From the section of the last line asked about, where it is that line

@@ -12,12 +12,12 @@
 //!   a chunk is walked once for many arcs instead of once for each. The chunks are those of
 //!   the uncached walk ([`NeighbourIndex::chunk_pieces`], anchored at t = 0), so the pieces
 //!   are the same bits; ranges longer than `MAX_WINDOW_CHUNKS` chunks are walked unkept.
-//! - **Pieces**: the neighbour sets along the last line ([`remember_pieces`]); a query on that
+//! - **Pieces**: the neighbour sets along the last line ([`remember_line`]); a query on that
 //!   line takes its piece's set instead of a kd-tree search ([`set_on_last_line`]), except
 //!   within [`SWITCH_BAND`] of a switch, where the search decides (the two agree everywhere
 //!   else: `neighbours::tests` and `tests/tests/surface_scattered.rs`).
 //! - **Section**: the L1 RBF along the last line as its cubics between kinks
-//!   ([`remember_section`], [`super::line_section`]): a sample of the compensation on that
+//!   ([`remember_line`], [`super::line_section`]): a sample of the compensation on that
 //!   line is a cubic's value ([`radial_on_last_line`]), away from the switches as above.
 //! - **Local systems**: solved RBF interpolants in a table of [`RBF_SLOTS`] entries indexed by
 //!   a hash of the neighbour set, a new one taking its slot's place ([`with_local_rbf`]): the
@@ -67,12 +67,14 @@ pub fn next_id() -> u64 {
     NEXT_ID.fetch_add(1, Ordering::Relaxed)
 }
 
-/// The pieces along one line of one surface.
-struct LinePieces {
+/// What is remembered of the last line of one surface asked about: its pieces up to `t1`, and
+/// its section where the surface made one (the L1 RBF's).
+struct LastLine {
     id: u64,
     line: Line,
     t1: f64,
     pieces: Vec<Piece>,
+    section: Option<LineSection>,
 }
 
 /// The walked chunks `first..` of one line of one surface, in order.
@@ -117,8 +119,7 @@ pub struct Along {
 
 thread_local! {
     static WINDOWS: RefCell<(u64, Vec<Option<LineWindow>>)> = const { RefCell::new((0, Vec::new())) };
-    static PIECES: RefCell<Option<LinePieces>> = const { RefCell::new(None) };
-    static SECTION: RefCell<Option<LineSection>> = const { RefCell::new(None) };
+    static LAST_LINE: RefCell<Option<LastLine>> = const { RefCell::new(None) };
     static SYSTEMS: RefCell<Vec<Option<Kept>>> = const { RefCell::new(Vec::new()) };
 }
 
@@ -300,14 +301,21 @@ impl LineWindow {
     }
 }
 
-/// Remembers the pieces of surface `id` along `line` up to `t1` (the first starts at t0).
-pub fn remember_pieces(id: u64, line: Line, t1: f64, pieces: Vec<Piece>) {
-    PIECES.with(|c| {
-        *c.borrow_mut() = Some(LinePieces {
+/// Remembers the pieces of surface `id` along `line` up to `t1` (the first starts at t0) and
+/// its section there, if any.
+pub fn remember_line(
+    id: u64,
+    (line, t1): (Line, f64),
+    pieces: Vec<Piece>,
+    section: Option<LineSection>,
+) {
+    LAST_LINE.with(|c| {
+        *c.borrow_mut() = Some(LastLine {
             id,
             line,
             t1,
             pieces,
+            section,
         })
     });
 }
@@ -315,7 +323,7 @@ pub fn remember_pieces(id: u64, line: Line, t1: f64, pieces: Vec<Piece>) {
 /// The neighbour set at `q` from the remembered pieces of surface `id`, when q lies on their
 /// line (to 1e-13 mm), within their range and away from every switch.
 pub fn set_on_last_line(id: u64, q: [f64; 2]) -> Option<NeighbourSet> {
-    PIECES.with(|c| {
+    LAST_LINE.with(|c| {
         let c = c.borrow();
         let lp = c.as_ref().filter(|lp| lp.id == id)?;
         let (dx, dy) = (q[0] - lp.line.x0, q[1] - lp.line.y0);
@@ -331,17 +339,13 @@ pub fn set_on_last_line(id: u64, q: [f64; 2]) -> Option<NeighbourSet> {
     })
 }
 
-/// Remembers the section along the last line asked about ([`LineSection`]).
-pub fn remember_section(section: LineSection) {
-    SECTION.with(|c| *c.borrow_mut() = Some(section));
-}
-
 /// The remembered section of surface `id` at t on `line` (the same bits), away from every
 /// switch as [`set_on_last_line`] asks.
 pub fn radial_on_last_line(id: u64, line: Line, t: f64) -> Option<Radial> {
-    SECTION.with(|c| {
+    LAST_LINE.with(|c| {
         let c = c.borrow();
-        let section = c.as_ref().filter(|s| s.is_of(id, &line))?;
+        let last = c.as_ref().filter(|l| l.id == id && l.line == line)?;
+        let section = last.section.as_ref()?;
         section.radial_at(t, SWITCH_BAND + 1e-15 * t.abs())
     })
 }

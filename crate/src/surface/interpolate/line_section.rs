@@ -16,7 +16,7 @@
 //! kd-tree decides the side there, as before.
 
 use super::neighbours::Piece;
-use crate::surface::{Line, Radial};
+use crate::surface::Radial;
 use std::cell::Cell;
 
 /// A cubic in powers of `t − mid`: `k[0] + k[1]·τ + k[2]·τ² + k[3]·τ³`.
@@ -80,31 +80,21 @@ pub fn stretches(
     }
 }
 
-/// The section of one surface along one line: stretches in order.
+/// The section of a surface along a line: stretches in order.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LineSection {
-    id: u64,
-    line: Line,
     stretches: Vec<Stretch>,
     /// The stretch read last: the samples of a nose arc mostly ascend along the line.
     last: Cell<usize>,
 }
 
 impl LineSection {
-    /// The section of surface `id` ([`super::cache::next_id`]) along `line` made of
-    /// `stretches`, in order.
-    pub fn new(id: u64, line: Line, stretches: Vec<Stretch>) -> Self {
+    /// The section made of `stretches`, in order.
+    pub fn new(stretches: Vec<Stretch>) -> Self {
         Self {
-            id,
-            line,
             stretches,
             last: Cell::new(0),
         }
-    }
-
-    /// Whether it is surface `id`'s section along `line`.
-    pub fn is_of(&self, id: u64, line: &Line) -> bool {
-        self.id == id && self.line == *line
     }
 
     /// The section at t: `None` outside its stretches, within `band` of the ends of a piece of

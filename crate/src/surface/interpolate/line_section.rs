@@ -11,9 +11,9 @@
 //!
 //! Each cubic is expanded about its stretch's midpoint m, so its powers of `t − m` stay below
 //! the stretch's length and it agrees with the RBF evaluated at the point to the rounding of
-//! either (the tests: within 1e-14 mm of sag). Within [`super::cache::SWITCH_BAND`] of a
-//! switch the section answers nothing, and the caller evaluates the surface itself, whose
-//! kd-tree decides the side there, as before.
+//! either (the tests: within 1e-15 mm of sag). Within [`super::cache::SWITCH_BAND`] of a
+//! switch or a chunk's end the section answers nothing, and the caller evaluates the surface
+//! itself, whose kd-tree decides the side at a switch, as before.
 
 use super::neighbours::Piece;
 use crate::surface::Radial;

@@ -118,6 +118,8 @@ pub struct Spiral {
 
 /// The most points per revolution.
 pub const MAX_POINTS_PER_REV: u32 = 1_000_000;
+/// The longest turn whose directions are tabulated ([`Spiral::turn_directions`]): 1 MiB.
+pub const MAX_TABULATED_DIRECTIONS: usize = 65_536;
 /// The most points on a path: 10⁹, three times the largest path of paper 000 (303 million
 /// points before HCAA); more is a mistake in the feed or the sampling, not a job.
 pub const MAX_POINTS: u64 = 1_000_000_000;
@@ -376,14 +378,49 @@ impl Spiral {
     /// section can be kept from one turn to the next, [`crate::surface::scattered`]), and the
     /// cumulative angle's rounding (about 2·10⁻¹³ rad after 250 turns) is left out.
     pub fn sin_cos(&self, theta: f64) -> (f64, f64) {
+        self.sin_cos_from(&[], theta)
+    }
+
+    /// [`Spiral::sin_cos`], read from `table` (this spiral's [`Spiral::turn_directions`]) where
+    /// it has the point's step: the same bits without a sine and cosine a point.
+    pub fn sin_cos_from(&self, table: &[(f64, f64)], theta: f64) -> (f64, f64) {
+        match self.step_in_turn(theta) {
+            Some((step, _)) if step < table.len() => table[step],
+            Some((step, n)) => self.step_sin_cos(step, n),
+            None => theta.sin_cos(),
+        }
+    }
+
+    /// On a constant-angle spiral of N points a turn, the step k mod N of the point at `theta`
+    /// and N; `None` on any other.
+    fn step_in_turn(&self, theta: f64) -> Option<(usize, usize)> {
         match self.sampling {
             Sampling::ConstantAngle { points_per_rev } if self.explicit.is_none() => {
                 let n = points_per_rev as f64;
-                let k = (self.sign * (theta - self.theta0) * n / TAU).round();
-                let turn = k.rem_euclid(n);
-                (self.theta0 + self.sign * TAU * turn / n).sin_cos()
+                // k is a whole number far below 2⁵³ (at most MAX_POINTS steps): its remainder
+                // in integers is the float remainder's, without a software fmod.
+                let k = (self.sign * (theta - self.theta0) * n / TAU).round() as i64;
+                let step = k.rem_euclid(i64::from(points_per_rev));
+                Some((step as usize, points_per_rev as usize))
             }
-            _ => theta.sin_cos(),
+            _ => None,
+        }
+    }
+
+    /// (sin, cos) of the `step`-th of `n` angles of a turn from the start angle.
+    fn step_sin_cos(&self, step: usize, n: usize) -> (f64, f64) {
+        (self.theta0 + self.sign * TAU * step as f64 / n as f64).sin_cos()
+    }
+
+    /// The (sin, cos) of every angle of a constant-angle turn of at most
+    /// [`MAX_TABULATED_DIRECTIONS`] points, in step order, for [`Spiral::sin_cos_from`]; empty
+    /// for any other spiral.
+    pub fn turn_directions(&self) -> Vec<(f64, f64)> {
+        match self.step_in_turn(self.theta0) {
+            Some((_, n)) if n <= MAX_TABULATED_DIRECTIONS => {
+                (0..n).map(|step| self.step_sin_cos(step, n)).collect()
+            }
+            _ => Vec::new(),
         }
     }
 
@@ -745,12 +782,31 @@ mod tests {
                 assert_eq!(spiral.sin_cos(p.theta), first, "angle {j} turn {turn}");
             }
         }
+        // The table gives the same bits at every point, and the computation does without it.
+        let table = spiral.turn_directions();
+        assert_eq!(table.len(), n as usize);
+        for p in &points {
+            assert_eq!(
+                spiral.sin_cos_from(&table, p.theta),
+                spiral.sin_cos(p.theta)
+            );
+        }
+        for (step, p) in points.iter().take(n as usize).enumerate() {
+            assert_eq!(table[step], spiral.sin_cos(p.theta), "step {step}");
+        }
+        // A turn longer than the table's bound is computed point by point.
+        let long = Sampling::ConstantAngle {
+            points_per_rev: MAX_TABULATED_DIRECTIONS as u32 + 1,
+        };
+        let spiral = Spiral::new(1.0, 0.5, &long, Direction::Ccw, 0.0).unwrap();
+        assert!(spiral.turn_directions().is_empty());
         // Other samplings keep the angle's own sine.
         let arc = Sampling::ConstantArc {
             arc_length_mm: 0.05,
             max_angle_step_deg: 30.0,
         };
         let spiral = Spiral::new(1.0, 0.1, &arc, Direction::Ccw, 3.0).unwrap();
+        assert!(spiral.turn_directions().is_empty());
         for p in spiral.points().take(100) {
             assert_eq!(spiral.sin_cos(p.theta), p.theta.sin_cos());
         }

@@ -99,6 +99,8 @@ pub struct ToolPath {
     job: Job,
     surface: Box<dyn Surface>,
     spiral: Spiral,
+    /// The spiral's [`Spiral::turn_directions`], read at every point.
+    directions: Vec<(f64, f64)>,
     nose: NoseCompensator,
     /// The nose's concavity bound on the surface ([`NoseCompensator::concavity`]).
     concavity: Option<Concavity>,
@@ -142,6 +144,7 @@ impl ToolPath {
         Ok(Self {
             job: job.clone(),
             surface,
+            directions: spiral.turn_directions(),
             spiral,
             nose,
             concavity,
@@ -243,7 +246,7 @@ impl ToolPath {
         }
         // One-way the radial section is all that matters: the turn's direction, the same bits
         // for the points of one angle on every turn ([`Spiral::sin_cos`]).
-        let (s, c) = self.spiral.sin_cos(sp.theta);
+        let (s, c) = self.spiral.sin_cos_from(&self.directions, sp.theta);
         let contact = self.nose.compensate_from(
             self.surface.as_ref(),
             self.concavity,

@@ -112,22 +112,82 @@ impl LineSection {
         }
     }
 
-    /// The last stretch starting at or before t: the one read last or the next where it is,
-    /// else by bisection.
+    /// The last stretch starting at or before t, searched from the one read last: steps that
+    /// double until they pass t (either way), then bisection between the last two. The samples
+    /// of a nose arc ascend a stretch or a few at a time and its refinements step back one, so
+    /// most take a comparison or two instead of a bisection of the whole section.
     fn stretch_at(&self, t: f64) -> Option<usize> {
-        let holds = |k: usize| {
-            self.stretches.get(k).is_some_and(|s| s.start <= t)
-                && self.stretches.get(k + 1).is_none_or(|s| s.start > t)
+        let before = |k: usize| self.stretches[k].start <= t;
+        let n = self.stretches.len();
+        let last = self.last.get().min(n.checked_sub(1)?);
+        let (lo, hi) = if before(last) {
+            let (mut lo, mut step) = (last, 1);
+            while lo + step < n && before(lo + step) {
+                lo += step;
+                step *= 2;
+            }
+            (lo, (lo + step).min(n))
+        } else {
+            let (mut hi, mut step) = (last, 1);
+            while hi >= step && !before(hi - step) {
+                hi -= step;
+                step *= 2;
+            }
+            if hi >= step {
+                (hi - step, hi)
+            } else if before(0) {
+                (0, hi)
+            } else {
+                return None;
+            }
         };
-        let last = self.last.get();
-        if holds(last) {
-            return Some(last);
+        Some(lo + self.stretches[lo + 1..hi].partition_point(|s| s.start <= t))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_stretch_found_from_the_last_read_is_the_bisections() {
+        // 200 stretches of uneven lengths; t walking up and down by small and large steps,
+        // jumping across the whole section, landing on starts exactly and falling outside:
+        // the stretch found from the hint is the plain bisection's every time.
+        let starts: Vec<f64> = (0..200)
+            .map(|k| k as f64 * 0.01 + 0.003 * ((k * 7) as f64).sin())
+            .collect();
+        let section = LineSection::new(
+            starts
+                .iter()
+                .map(|&start| Stretch {
+                    start,
+                    piece: [start, start + 0.01],
+                    cubic: None,
+                })
+                .collect(),
+        );
+        let mut ts: Vec<f64> = (0..3000)
+            .map(|i| 1.0 + 1.05 * ((i as f64) * 0.0021).sin() + 0.02 * ((i * 13) as f64).cos())
+            .collect();
+        ts.extend(starts.iter().rev().copied());
+        ts.extend([
+            -1.0,
+            5.0,
+            starts[0],
+            -1e-9,
+            starts[199],
+            0.5,
+            starts[100] - 1e-15,
+        ]);
+        for &t in &ts {
+            let expected = starts.partition_point(|&s| s <= t).checked_sub(1);
+            assert_eq!(section.stretch_at(t), expected, "t = {t}");
+            if let Some(k) = expected {
+                section.last.set(k);
+            }
         }
-        if holds(last + 1) {
-            return Some(last + 1);
-        }
-        self.stretches
-            .partition_point(|s| s.start <= t)
-            .checked_sub(1)
+        let empty = LineSection::new(Vec::new());
+        assert_eq!(empty.stretch_at(0.0), None);
     }
 }

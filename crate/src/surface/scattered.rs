@@ -522,6 +522,26 @@ fn spacing(samples: &Samples, index: &NeighbourIndex) -> Result<f64, FieldError>
     Ok(h)
 }
 
+/// The values of two ascending sequences in ascending order, each value once: what sorting
+/// them together and dropping repeats gives, without the sort.
+fn merged(a: impl Iterator<Item = f64>, b: &[f64]) -> impl Iterator<Item = f64> {
+    let (mut a, mut b) = (a.peekable(), b.iter().copied().peekable());
+    let mut last = None;
+    std::iter::from_fn(move || {
+        loop {
+            let next = match (a.peek(), b.peek()) {
+                (Some(x), Some(y)) if y.total_cmp(x).is_lt() => b.next(),
+                (Some(_), _) => a.next(),
+                (None, _) => b.next(),
+            }?;
+            if last != Some(next) {
+                last = Some(next);
+                return last;
+            }
+        }
+    })
+}
+
 impl Surface for Scattered {
     fn local(&self, x: f64, y: f64) -> Result<Local, UndefinedError> {
         self.check_domain(x, y)?;
@@ -581,11 +601,9 @@ impl Surface for Scattered {
         let mut got = Along::default();
         let range = [t0, t1];
         cache::along(self.id, &self.index, (line, self.n), range, &make, &mut got);
-        let mut mine: Vec<f64> = got.pieces.iter().skip(1).map(|p| p.start).collect();
-        mine.extend_from_slice(&got.kinks);
-        mine.sort_by(f64::total_cmp);
-        mine.dedup();
-        out.extend(mine.into_iter().filter(|t| *t > t0 && *t < t1));
+        let switches = got.pieces.iter().skip(1).map(|p| p.start);
+        let inside = |t: &f64| *t > t0 && *t < t1;
+        out.extend(merged(switches, &got.kinks).filter(inside));
         let section = l1.then(|| LineSection::new(got.stretches));
         cache::remember_line(self.id, (line, t1), got.pieces, section);
     }
@@ -627,5 +645,35 @@ impl Surface for Scattered {
             "scattered data: {data} from {}, spacing {} mm; {how}",
             self.name, self.spacing
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::merged;
+
+    #[test]
+    fn merged_is_sorting_both_and_dropping_repeats() {
+        // Two ascending sequences with values in common, repeats inside each, a signed zero
+        // each way and either one empty: the merge equals the sort of both, deduplicated.
+        let a: Vec<f64> = (0..300).map(|k| ((k / 2) as f64 * 0.37).floor()).collect();
+        let b: Vec<f64> = (0..200).map(|k| (k as f64 * 0.61).floor() - 3.0).collect();
+        let cases = [
+            (a.clone(), b.clone()),
+            (b.clone(), a.clone()),
+            (vec![-0.0, 0.0, 1.0], vec![0.0, 1.0, 1.0]),
+            (Vec::new(), b.clone()),
+            (a.clone(), Vec::new()),
+        ];
+        for (a, b) in cases {
+            let mut expected: Vec<f64> = a.iter().chain(&b).copied().collect();
+            expected.sort_by(f64::total_cmp);
+            expected.dedup();
+            let got: Vec<f64> = merged(a.iter().copied(), &b).collect();
+            assert_eq!(
+                got.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                expected.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+            );
+        }
     }
 }

@@ -521,16 +521,20 @@ impl NoseCompensator {
         if angles.is_empty() && table.is_empty() {
             return angles;
         }
-        // In place: each kink's angle becomes the angle just before it, the one just after is
-        // appended.
-        for i in 0..angles.len() {
+        // In place, from the last: each kink's angle becomes the angles just before and just
+        // after it, in order (ascending already unless two kinks lie within the offsets).
+        let n = angles.len();
+        angles.resize(2 * n, 0.0);
+        for i in (0..n).rev() {
             let a = angles[i];
-            angles[i] = a - KINK_OFFSET;
-            angles.push(a + KINK_OFFSET);
+            angles[2 * i] = a - KINK_OFFSET;
+            angles[2 * i + 1] = a + KINK_OFFSET;
         }
         angles.extend_from_slice(table);
         angles.retain(|a| *a > lo && *a < hi && *a >= from && *a <= to);
-        angles.sort_by(f64::total_cmp);
+        if !angles.is_sorted_by(|a, b| a.total_cmp(b).is_le()) {
+            angles.sort_by(f64::total_cmp);
+        }
         angles
     }
 

@@ -33,7 +33,11 @@
 //! slots gave 13.8 s on the example at a feed of 0.1 mm/rev against 16.3 s with 1 024 and
 //! 14.4 s with 32 768; 65 536 slots gave 28 s at the example's feed for 90 MB more. With the
 //! cubics kept in the windows and read for those evaluations, 16–18 s (peak memory 108 MB),
-//! the program byte-identical again.
+//! the program byte-identical again. With 4 ways to a line's hash, a thread's 1 080 or so lines
+//! (512 sets, 2.1 a set on average) overfilled some sets, whose lines then evicted each other
+//! every turn and walked their whole range afresh: 11 000 windows made and 800 000 chunks
+//! walked where 2 200 and 490 000 do; 16 ways (128 sets of 16, 8.4 a set) keep them, and the
+//! example's CPU time fell by a fifth (19.2–21.8 s → 15.6–17.6 s, the same peak memory).
 //!
 //! All are keyed by a surface identity ([`next_id`]), so surfaces never share entries; the
 //! values returned are those a fresh computation gives.
@@ -56,7 +60,7 @@ pub const RBF_SLOTS: usize = 8192;
 /// spiral's turn and the 360 sections of the concave-zone report.
 pub const LINE_SLOTS: usize = 2048;
 /// Entries a line may take (its hash picks a set of this many).
-pub const LINE_WAYS: usize = 4;
+pub const LINE_WAYS: usize = 16;
 /// The most chunks a window keeps (longer ranges are walked without keeping them).
 const MAX_WINDOW_CHUNKS: i64 = 1024;
 

@@ -1,7 +1,7 @@
 //! Work split over the machine's cores: every core natively, one thread in the browser, where
 //! the module has no threads and spawning one would trap. Each item is computed alone, so a
 //! result never depends on how the work was split. [`fill_chunks`] splits one slice over the
-//! threads; [`pipeline`] streams batches through them in order while the calling thread
+//! threads, [`fill_each`] hands its items out one at a time; [`pipeline`] streams batches through them in order while the calling thread
 //! consumes the finished ones (a producer-consumer pipeline over `std::sync::mpsc` channels).
 
 /// Threads for parallel work: every core natively, one in the browser.
@@ -40,6 +40,59 @@ where
             .into_iter()
             .try_for_each(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
     })
+}
+
+/// Fills `out[k]` with `make(k)` on [`workers`] threads, each taking the next item as it
+/// finishes one (for items of uneven cost, which contiguous chunks would leave to one thread);
+/// serially where there is one worker or one item. The first error in item order wins.
+pub fn fill_each<T, E>(out: &mut [T], make: impl Fn(usize) -> Result<T, E> + Sync) -> Result<(), E>
+where
+    T: Send,
+    E: Send,
+{
+    let (n, w) = (out.len(), workers().min(out.len()));
+    if w <= 1 {
+        for (k, slot) in out.iter_mut().enumerate() {
+            *slot = make(k)?;
+        }
+        return Ok(());
+    }
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let take = || next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let done: Vec<Vec<(usize, Result<T, E>)>> = std::thread::scope(|scope| {
+        let worker = || {
+            // A worker stops at its first error: every item before it was taken, and is computed.
+            let mut mine = Vec::new();
+            loop {
+                let k = take();
+                if k >= n {
+                    break mine;
+                }
+                let r = make(k);
+                let failed = r.is_err();
+                mine.push((k, r));
+                if failed {
+                    break mine;
+                }
+            }
+        };
+        let handles: Vec<_> = (0..w).map(|_| scope.spawn(worker)).collect();
+        handles
+            .into_iter()
+            .map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+            .collect()
+    });
+    let mut first_error: Option<(usize, E)> = None;
+    for (k, r) in done.into_iter().flatten() {
+        match r {
+            Ok(v) => out[k] = v,
+            Err(e) if first_error.as_ref().is_none_or(|(j, _)| k < *j) => {
+                first_error = Some((k, e))
+            }
+            Err(_) => {}
+        }
+    }
+    first_error.map_or(Ok(()), |(_, e)| Err(e))
 }
 
 /// Streams batches of items through [`workers`] threads, handing the results on in order:
@@ -174,6 +227,32 @@ mod tests {
             |_| Ok(()),
         );
         assert_eq!(e, Err(299));
+    }
+
+    #[test]
+    fn items_handed_out_one_at_a_time_are_each_made_once_and_the_first_error_wins() {
+        // Items of very uneven cost (every 16th spins a thousand times longer): each slot gets
+        // its own item, each item is made once; of three failing items the first in order is
+        // the error, whichever thread met it.
+        for n in [0usize, 1, 2, 3, 17, 500] {
+            let made = std::sync::atomic::AtomicUsize::new(0);
+            let mut out = vec![usize::MAX; n];
+            fill_each(&mut out, |k| {
+                made.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                let spins = if k % 16 == 0 { 100_000 } else { 100 };
+                let v = (0..spins).fold(k, |a, i| std::hint::black_box(a ^ i) ^ i);
+                Ok::<usize, ()>(v * 2)
+            })
+            .unwrap();
+            assert_eq!(out, (0..n).map(|k| 2 * k).collect::<Vec<_>>());
+            assert_eq!(made.into_inner(), n);
+        }
+        let mut out = vec![0; 200];
+        let e = fill_each(&mut out, |k| match k {
+            90 | 17 | 40 => Err(k),
+            _ => Ok(k),
+        });
+        assert_eq!(e, Err(17));
     }
 
     #[test]

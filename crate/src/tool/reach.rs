@@ -18,13 +18,17 @@
 //! golden-section searches (over u for the largest residual, over ρ_s for the envelope), because at
 //! a kink both functions have corners that a grid would only resolve to first order. The depth
 //! reported is the largest of those found at up to five angles of each zone: the sharpest, and four
-//! spread evenly over the zone's angles. At a kink the surface reports, the residual is read
+//! spread evenly over the zone's angles. Each reported kink and each general search at those
+//! angles is one probe, and the probes of a batch of zones are handed to the cores one at a
+//! time ([`crate::parallel::fill_each`]): a zone's cost ranges from milliseconds to seconds (the
+//! scattered example's largest, 131 kinks at each of four angles, took 3.5 s on one core while
+//! the other sat idle), and the depths are compared in the probes' order, as before. At a kink the surface reports, the residual is read
 //! against the surface at the kink and just either side of it: where the surface jumps there
 //! (a neighbour-set switch of scattered data) the lower side is the form error, and the value
 //! exactly at the kink is either side's by rounding. Zones shallower than 0.1 nm (a radial section grazing a
 //! slope kink) are counted but not listed.
 
-use crate::parallel::{fill_chunks, workers};
+use crate::parallel::{fill_chunks, fill_each, workers};
 use crate::path::{Location, PathError};
 use crate::progress::{Progress, ProgressFn, Stage};
 use crate::surface::{Line, Surface, UndefinedError};
@@ -131,21 +135,30 @@ pub fn concave_zones(
     let batch = 4 * workers();
     for (k, part) in zones.chunks_mut(batch).enumerate() {
         let first = k * batch;
-        fill_chunks(part, |start, out| {
-            for (j, slot) in out.iter_mut().enumerate() {
-                let cells = &found[first + start + j];
-                *slot = Some(measure(
-                    surface,
-                    nose,
-                    concavity,
-                    &grid,
-                    cells,
-                    delta,
-                    part_radius_mm,
-                )?);
-            }
-            Ok::<(), UndefinedError>(())
+        let cells = &found[first..first + part.len()];
+        // Every probe of the batch's zones handed out one at a time: one zone's may take
+        // seconds (131 kinks at each of four angles) where the others' take milliseconds.
+        let probes: Vec<(usize, usize, Probe)> = cells
+            .iter()
+            .enumerate()
+            .flat_map(|(z, c)| {
+                probes(&grid, c, delta)
+                    .into_iter()
+                    .map(move |(i, p)| (z, i, p))
+            })
+            .collect();
+        let mut depths = vec![(0.0, 0.0); probes.len()];
+        fill_each(&mut depths, |t| {
+            let (_, i, probe) = probes[t];
+            let theta = TAU * i as f64 / ANGLES as f64;
+            let section = Envelope::new(surface, nose, concavity, theta, part_radius_mm);
+            probe.depth(&section, delta)
         })?;
+        for (z, slot) in part.iter_mut().enumerate() {
+            let mine = probes.iter().zip(&depths).filter(|((y, _, _), _)| *y == z);
+            let found = mine.map(|(&(_, i, _), &depth)| (i, depth));
+            *slot = Some(zone(&grid, &cells[z], delta, found));
+        }
         let done = (ANGLES + first + part.len()) as u64;
         if progress(Progress {
             stage: Stage::Zones,
@@ -317,94 +330,117 @@ fn components(grid: &[Option<Flag>], cols: usize) -> Vec<Vec<(usize, usize)>> {
     out
 }
 
-/// Extent, sharpness and depth of one zone (`concavity`: the nose's certificate on the surface).
-fn measure(
-    surface: &dyn Surface,
-    nose: &NoseCompensator,
-    concavity: Option<Concavity>,
+/// Where a zone's depth is probed ([`probes`]).
+#[derive(Debug, Clone, Copy)]
+enum Probe {
+    /// At a kink the surface reported, ρ mm: the bottom of its valley.
+    Kink(f64),
+    /// The general search over `[lo, hi]`, mm, around flags away from reported kinks.
+    Search(f64, f64),
+}
+
+impl Probe {
+    /// Where the residual peaks and its depth, (u, mm), on `section`.
+    fn depth(self, section: &Envelope, delta: f64) -> Result<(f64, f64), UndefinedError> {
+        match self {
+            Probe::Kink(t) => Ok((t, section.residual_at_kink(t, delta)?)),
+            Probe::Search(lo, hi) => section.deepest(lo, hi, delta),
+        }
+    }
+}
+
+/// The flag of cell (angle, sample), or an unflagged one.
+fn flag_of(grid: &[Option<Flag>], (i, j): (usize, usize)) -> Flag {
+    let cols = grid.len() / ANGLES;
+    grid[i * cols + j].unwrap_or(Flag {
+        radius: f64::INFINITY,
+        kink: false,
+        exact: None,
+    })
+}
+
+/// The zone's sharpest cell.
+fn sharpest_cell(grid: &[Option<Flag>], cells: &[(usize, usize)]) -> (usize, usize) {
+    cells
+        .iter()
+        .min_by(|a, b| {
+            flag_of(grid, **a)
+                .radius
+                .total_cmp(&flag_of(grid, **b).radius)
+        })
+        .copied()
+        .unwrap_or((0, 0))
+}
+
+/// The probes of a zone, (angle index, probe), in the order their depths are compared: at its
+/// sharpest angle and four spread over its angles, ascending, each reported kink of the
+/// angle's flagged cells (a reported kink is the bottom of its valley: the residual peaks
+/// there exactly, on the lower side where the surface jumps, a neighbour-set switch of
+/// scattered data), then the general search around the sampled flags away from them.
+fn probes(grid: &[Option<Flag>], cells: &[(usize, usize)], delta: f64) -> Vec<(usize, Probe)> {
+    let mut angles: Vec<usize> = cells.iter().map(|c| c.0).collect();
+    angles.sort_unstable();
+    angles.dedup();
+    let mut reps: Vec<usize> = (0..SPREAD_ANGLES)
+        .map(|q| angles[q * angles.len() / SPREAD_ANGLES])
+        .collect();
+    reps.push(sharpest_cell(grid, cells).0);
+    reps.sort_unstable();
+    reps.dedup();
+    let mut out = Vec::new();
+    for i in reps {
+        let row: Vec<(usize, Flag)> = cells
+            .iter()
+            .filter(|c| c.0 == i)
+            .map(|&c| (c.1, flag_of(grid, c)))
+            .collect();
+        let kinks: Vec<f64> = row.iter().filter_map(|(_, f)| f.exact).collect();
+        out.extend(kinks.iter().map(|&t| (i, Probe::Kink(t))));
+        let sampled = row.iter().filter(|(j, f)| {
+            f.exact.is_none()
+                && kinks
+                    .iter()
+                    .all(|t| (t - delta * *j as f64).abs() > 2.0 * delta)
+        });
+        let (lo, hi) = sampled.fold((usize::MAX, 0), |(lo, hi), (j, _)| (lo.min(*j), hi.max(*j)));
+        if lo <= hi {
+            let search = Probe::Search(delta * lo as f64 - delta, delta * hi as f64 + delta);
+            out.push((i, search));
+        }
+    }
+    out
+}
+
+/// The zone of `cells` whose probes found `depths` ((angle index, (u, depth mm)) in the order
+/// of [`probes`]): the first deepest is where it is deepest.
+fn zone(
     grid: &[Option<Flag>],
     cells: &[(usize, usize)],
     delta: f64,
-    part_radius: f64,
-) -> Result<ConcaveZone, UndefinedError> {
-    let cols = grid.len() / ANGLES;
-    let flag = |&(i, j): &(usize, usize)| {
-        grid[i * cols + j].map_or(
-            Flag {
-                radius: f64::INFINITY,
-                kink: false,
-                exact: None,
-            },
-            |f| f,
-        )
-    };
-    let sharpest = cells
-        .iter()
-        .min_by(|a, b| flag(a).radius.total_cmp(&flag(b).radius))
-        .copied()
-        .unwrap_or((0, 0));
+    depths: impl Iterator<Item = (usize, (f64, f64))>,
+) -> ConcaveZone {
+    let mut deepest = (0.0, Location::new(0.0, 0.0));
+    for (i, (u, depth)) in depths {
+        if depth > deepest.0 {
+            deepest = (depth, Location::new(u, TAU * i as f64 / ANGLES as f64));
+        }
+    }
     let mut angles: Vec<usize> = cells.iter().map(|c| c.0).collect();
     angles.sort_unstable();
     angles.dedup();
     let (from, to) = angular_extent(&angles);
-    let mut reps: Vec<usize> = (0..SPREAD_ANGLES)
-        .map(|q| angles[q * angles.len() / SPREAD_ANGLES])
-        .collect();
-    reps.push(sharpest.0);
-    reps.sort_unstable();
-    reps.dedup();
-    let mut deepest = (0.0, Location::new(0.0, 0.0));
-    for i in reps {
-        let theta = TAU * i as f64 / ANGLES as f64;
-        let section = Envelope::new(surface, nose, concavity, theta, part_radius);
-        let row: Vec<(usize, Flag)> = cells
-            .iter()
-            .filter(|c| c.0 == i)
-            .map(|c| (c.1, flag(c)))
-            .collect();
-        let kinks: Vec<f64> = row.iter().filter_map(|(_, f)| f.exact).collect();
-        // A reported kink is the bottom of its valley: the residual peaks there exactly, on
-        // the lower side where the surface jumps (a neighbour-set switch of scattered data).
-        let mut candidates = Vec::new();
-        for &t in &kinks {
-            candidates.push((t, section.residual_at_kink(t, delta)?));
-        }
-        // Sampled flags away from reported kinks need the general search.
-        let sampled: Vec<usize> = row
-            .iter()
-            .filter(|(j, f)| {
-                f.exact.is_none()
-                    && kinks
-                        .iter()
-                        .all(|t| (t - delta * *j as f64).abs() > 2.0 * delta)
-            })
-            .map(|(j, _)| *j)
-            .collect();
-        if let (Some(&lo), Some(&hi)) = (sampled.iter().min(), sampled.iter().max()) {
-            candidates.push(section.deepest(
-                delta * lo as f64 - delta,
-                delta * hi as f64 + delta,
-                delta,
-            )?);
-        }
-        for (u, depth) in candidates {
-            if depth > deepest.0 {
-                deepest = (depth, Location::new(u, theta));
-            }
-        }
-    }
     let rhos = cells.iter().map(|c| c.1 as f64 * delta);
     let step = 360.0 / ANGLES as f64;
-    Ok(ConcaveZone {
+    ConcaveZone {
         rho_min_mm: rhos.clone().fold(f64::INFINITY, f64::min),
         rho_max_mm: rhos.fold(0.0, f64::max),
         theta_from_deg: from as f64 * step,
         theta_to_deg: to as f64 * step,
-        min_curvature_radius_mm: flag(&sharpest).radius,
-        slope_kink: cells.iter().any(|c| flag(c).kink),
+        min_curvature_radius_mm: flag_of(grid, sharpest_cell(grid, cells)).radius,
+        slope_kink: cells.iter().any(|&c| flag_of(grid, c).kink),
         depth_um: deepest.0 * 1e3,
         at: deepest.1,
-    })
+    }
 }
 
 /// The smallest arc of angle indices covering `sorted` (first, last), across 0 if shorter.

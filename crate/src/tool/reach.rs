@@ -28,7 +28,7 @@
 //! exactly at the kink is either side's by rounding. Zones shallower than 0.1 nm (a radial section grazing a
 //! slope kink) are counted but not listed.
 
-use crate::parallel::{fill_chunks, fill_each, workers};
+use crate::parallel::{fill_each, workers};
 use crate::path::{Location, PathError};
 use crate::progress::{Progress, ProgressFn, Stage};
 use crate::surface::{Line, Surface, UndefinedError};
@@ -197,12 +197,7 @@ fn flag_grid(
     let mut rows: Vec<Vec<Option<Flag>>> = vec![Vec::new(); ANGLES];
     let batch = 8 * workers();
     for (k, part) in rows.chunks_mut(batch).enumerate() {
-        fill_chunks(part, |start, out| {
-            for (j, row) in out.iter_mut().enumerate() {
-                *row = flag_row(surface, r, k * batch + start + j, cols, delta)?;
-            }
-            Ok::<(), UndefinedError>(())
-        })?;
+        fill_each(part, |j| flag_row(surface, r, k * batch + j, cols, delta))?;
         let done = (k * batch + part.len()) as u64;
         let total = ANGLES as u64;
         if progress(Progress {

@@ -112,6 +112,11 @@ impl Surface for Placed {
         self.inner.slope_kinks(Line { x0, y0, c, s }, t0, t1, out);
     }
 
+    /// The term's.
+    fn keeps_lines(&self) -> bool {
+        self.inner.keeps_lines()
+    }
+
     /// The term's own at the point in its coordinates (a rigid move keeps distances).
     fn kink_free_radius(&self, x: f64, y: f64) -> f64 {
         let (xi, yi) = self.to_inner(x, y);
@@ -223,6 +228,11 @@ impl Surface for Composite {
         for p in &self.parts {
             p.slope_kinks(line, t0, t1, out);
         }
+    }
+
+    /// Whether any part does.
+    fn keeps_lines(&self) -> bool {
+        self.parts.iter().any(|p| p.keeps_lines())
     }
 
     /// The nearest of the parts'.

@@ -290,6 +290,15 @@ pub trait Surface: Send + Sync + std::fmt::Debug {
         None
     }
 
+    /// Whether the surface keeps work along the lines it is asked about from one point to the
+    /// next (scattered data's line windows, [`crate::surface::scattered::interpolate::cache`]):
+    /// a walk on several cores then gives each worker long runs of turns, whose nose arcs slide
+    /// along the kept lines, rather than short batches that each start them afresh. False by
+    /// default.
+    fn keeps_lines(&self) -> bool {
+        false
+    }
+
     /// A radius, mm, about `(x, y)` within which the surface has no slope kink: a stretch of
     /// any line inside that disc holds none of [`Surface::slope_kinks`]. The compensation then
     /// need not ask for the kinks under a short step. Infinite where there are none (the

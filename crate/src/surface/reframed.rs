@@ -289,6 +289,11 @@ impl Surface for Reframed {
         }
     }
 
+    /// The design's.
+    fn keeps_lines(&self) -> bool {
+        self.inner.keeps_lines()
+    }
+
     /// The design's at the moved point where the axis is not tilted; under a tilt not said (0:
     /// the kinks are found along the curved image of each stretch).
     fn kink_free_radius(&self, x: f64, y: f64) -> f64 {

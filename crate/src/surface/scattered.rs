@@ -608,6 +608,11 @@ impl Surface for Scattered {
         cache::remember_line(self.id, (line, t1), got.pieces, section);
     }
 
+    /// Yes: the walked chunks of each line ([`cache::along`]).
+    fn keeps_lines(&self) -> bool {
+        true
+    }
+
     /// From the section of the last line asked about, where it is that line
     /// ([`interpolate::line_section`]).
     fn kept_radial(&self, c: f64, s: f64, rho: f64) -> Option<Result<Radial, UndefinedError>> {

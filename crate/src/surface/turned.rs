@@ -61,6 +61,11 @@ impl Surface for Turned {
         self.inner.slope_kinks(design, t0, t1, out);
     }
 
+    /// The design's.
+    fn keeps_lines(&self) -> bool {
+        self.inner.keeps_lines()
+    }
+
     /// The design's section along the mirrored line, turned over.
     fn kept_radial(&self, c: f64, s: f64, rho: f64) -> Option<Result<Radial, UndefinedError>> {
         let r = self.inner.kept_radial(-c, s, rho)?;

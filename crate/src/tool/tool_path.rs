@@ -25,20 +25,28 @@ use crate::surface::{Surface, UndefinedError};
 /// Points compensated per batch before they are handed on: bounds the memory of a run.
 const BATCH: usize = 16_384;
 
-/// The points of a batch for a walk of `total` points: at most [`BATCH`], a multiple of
-/// [`WARM_RUN`], and as many batches as a multiple of the workers, all of a size but the last:
-/// the pipeline deals batches to the workers in turn, and one batch more than the others get
-/// would leave the rest idle while one computes it (a tenth of the time of a path of 11 batches
-/// on two cores). How a path is cut into batches never changes a point ([`WARM_RUN`]).
-fn even_batch(total: u64) -> u64 {
-    let workers = crate::parallel::workers() as u64;
-    let batches = total
-        .div_ceil(BATCH as u64)
-        .next_multiple_of(workers)
-        .max(1);
+/// Points per batch, at most, where the surface keeps work along its lines
+/// ([`Surface::keeps_lines`]) and several workers share the walk: each worker's kept lines
+/// start afresh with every batch it takes (the whole nose arc's stretch of each line walked
+/// again), so its batches are long. 23 MB a batch of path points, beside the line windows.
+const LONG_BATCH: usize = 16 * BATCH;
+
+/// The points of a batch for a walk of `total` points on `workers` workers (`long`: the
+/// surface keeps its lines): at most [`BATCH`] ([`LONG_BATCH`]), a multiple of [`WARM_RUN`],
+/// and as many batches as a multiple of the workers, all of a size but the last: the pipeline
+/// deals batches to the workers in turn, and one batch more than the others get would leave
+/// the rest idle while one computes it (a tenth of the time of a path of 11 batches on two
+/// cores). How a path is cut into batches never changes a point ([`WARM_RUN`]).
+fn even_batch(total: u64, workers: usize, long: bool) -> u64 {
+    let most = if long && workers > 1 {
+        LONG_BATCH
+    } else {
+        BATCH
+    } as u64;
+    let batches = total.div_ceil(most).next_multiple_of(workers as u64).max(1);
     // At least one run: `total` is an estimate on some spirals, and may be short.
     let even = total.div_ceil(batches).max(1).next_multiple_of(WARM_RUN);
-    even.min(BATCH as u64)
+    even.min(most)
 }
 
 /// The path is compensated in runs of this many points, aligned on the index: the first point
@@ -439,7 +447,8 @@ impl ToolPath {
             .point_count_hint()
             .min(range.end)
             .saturating_sub(range.start);
-        let batch = even_batch(total);
+        let long = self.surface.keeps_lines();
+        let batch = even_batch(total, crate::parallel::workers(), long);
         let mut done = 0u64;
         let mut spiral = self.spiral.points();
         // A batch's points with their indices and whether they are handed on: in every batch
@@ -538,4 +547,46 @@ pub struct Batched {
     pub folds: bool,
     /// It lies in the walk's range and is handed on here (not context).
     pub handed_on: bool,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn batches_are_even_across_the_workers_and_bounded() {
+        // The scattered example's 180 001 points on two workers: 12 batches of 15 040 (the
+        // runs' multiple of ⌈180 001 / 12⌉), or two of 90 048 where the surface keeps lines;
+        // on one worker, 16 384 either way.
+        assert_eq!(even_batch(180_001, 2, false), 15_040);
+        assert_eq!(even_batch(180_001, 2, true), 90_048);
+        assert_eq!(even_batch(180_001, 1, true), BATCH as u64);
+        for total in [0, 1, 63, 64, 1_000, 180_001, 4_000_001, 28_400_001] {
+            for workers in [1, 2, 3, 16] {
+                for long in [false, true] {
+                    let b = even_batch(total, workers, long);
+                    let most = if long && workers > 1 {
+                        LONG_BATCH
+                    } else {
+                        BATCH
+                    };
+                    assert!(b >= WARM_RUN && b.is_multiple_of(WARM_RUN) && b <= most as u64);
+                    // Dealt in turn, the workers' shares differ by the runs' rounding only.
+                    let mut share = vec![0u64; workers];
+                    let (mut k, mut left) = (0, total);
+                    while left > 0 {
+                        share[k % workers] += b.min(left);
+                        left -= b.min(left);
+                        k += 1;
+                    }
+                    let spread = share.iter().max().unwrap() - share.iter().min().unwrap();
+                    let batches = total.div_ceil(b);
+                    assert!(
+                        spread <= WARM_RUN * batches || total < WARM_RUN * workers as u64 * 4,
+                        "{total} points, {workers} workers, long {long}: batch {b}, {share:?}"
+                    );
+                }
+            }
+        }
+    }
 }

@@ -1,8 +1,9 @@
 //! Work split over the machine's cores: every core natively, one thread in the browser, where
 //! the module has no threads and spawning one would trap. Each item is computed alone, so a
 //! result never depends on how the work was split. [`fill_chunks`] splits one slice over the
-//! threads, [`fill_each`] hands its items out one at a time; [`pipeline`] streams batches through them in order while the calling thread
-//! consumes the finished ones (a producer-consumer pipeline over `std::sync::mpsc` channels).
+//! threads, [`fill_each`] hands its items out one at a time; [`pipeline`] streams batches
+//! through them in order while the calling thread consumes the finished ones (a
+//! producer-consumer pipeline over `std::sync::mpsc` channels).
 
 /// Threads for parallel work: every core natively, one in the browser.
 pub fn workers() -> usize {

@@ -19,14 +19,14 @@
 //! a kink both functions have corners that a grid would only resolve to first order. The depth
 //! reported is the largest of those found at up to five angles of each zone: the sharpest, and four
 //! spread evenly over the zone's angles. Each reported kink and each general search at those
-//! angles is one probe, and the probes of a batch of zones are handed to the cores one at a
-//! time ([`crate::parallel::fill_each`]): a zone's cost ranges from milliseconds to seconds (the
-//! scattered example's largest, 131 kinks at each of four angles, took 3.5 s on one core while
-//! the other sat idle), and the depths are compared in the probes' order, as before. At a kink the surface reports, the residual is read
-//! against the surface at the kink and just either side of it: where the surface jumps there
-//! (a neighbour-set switch of scattered data) the lower side is the form error, and the value
-//! exactly at the kink is either side's by rounding. Zones shallower than 0.1 nm (a radial section grazing a
-//! slope kink) are counted but not listed.
+//! angles is one probe; the probes of a batch of zones go to the cores one at a time
+//! ([`crate::parallel::fill_each`]: a zone costs milliseconds to seconds, the scattered example's
+//! largest 3.5 s, 131 kinks at each of four angles), their depths compared in the probes' order.
+//! At a kink the surface reports, the residual is read against the surface at the kink and just
+//! either side of it: where the surface jumps there (a neighbour-set switch of scattered data)
+//! the lower side is the form error, and the value exactly at the kink is either side's by
+//! rounding. Zones shallower than 0.1 nm (a radial section grazing a slope kink) are counted but
+//! not listed.
 
 use crate::parallel::{fill_each, workers};
 use crate::path::{Location, PathError};
@@ -156,8 +156,8 @@ pub fn concave_zones(
         })?;
         for (z, slot) in part.iter_mut().enumerate() {
             let mine = probes.iter().zip(&depths).filter(|((y, _, _), _)| *y == z);
-            let found = mine.map(|(&(_, i, _), &depth)| (i, depth));
-            *slot = Some(zone(&grid, &cells[z], delta, found));
+            let zone_depths = mine.map(|(&(_, i, _), &depth)| (i, depth));
+            *slot = Some(zone(&grid, &cells[z], delta, zone_depths));
         }
         let done = (ANGLES + first + part.len()) as u64;
         if progress(Progress {

@@ -394,14 +394,20 @@ impl Spiral {
     /// On a constant-angle spiral of N points a turn, the step k mod N of the point at `theta`
     /// and N; `None` on any other.
     fn step_in_turn(&self, theta: f64) -> Option<(usize, usize)> {
+        let points_per_rev = self.turn_points()?;
+        let n = points_per_rev as f64;
+        // k is a whole number far below 2⁵³ (at most MAX_POINTS steps): its remainder in
+        // integers is the float remainder's, without a software fmod.
+        let k = (self.sign * (theta - self.theta0) * n / TAU).round() as i64;
+        let step = k.rem_euclid(i64::from(points_per_rev));
+        Some((step as usize, points_per_rev as usize))
+    }
+
+    /// N, the points of a turn, on a constant-angle spiral (not one given as a list).
+    fn turn_points(&self) -> Option<u32> {
         match self.sampling {
             Sampling::ConstantAngle { points_per_rev } if self.explicit.is_none() => {
-                let n = points_per_rev as f64;
-                // k is a whole number far below 2⁵³ (at most MAX_POINTS steps): its remainder
-                // in integers is the float remainder's, without a software fmod.
-                let k = (self.sign * (theta - self.theta0) * n / TAU).round() as i64;
-                let step = k.rem_euclid(i64::from(points_per_rev));
-                Some((step as usize, points_per_rev as usize))
+                Some(points_per_rev)
             }
             _ => None,
         }
@@ -416,8 +422,8 @@ impl Spiral {
     /// [`MAX_TABULATED_DIRECTIONS`] points, in step order, for [`Spiral::sin_cos_from`]; empty
     /// for any other spiral.
     pub fn turn_directions(&self) -> Vec<(f64, f64)> {
-        match self.step_in_turn(self.theta0) {
-            Some((_, n)) if n <= MAX_TABULATED_DIRECTIONS => {
+        match self.turn_points().map(|n| n as usize) {
+            Some(n) if n <= MAX_TABULATED_DIRECTIONS => {
                 (0..n).map(|step| self.step_sin_cos(step, n)).collect()
             }
             _ => Vec::new(),

@@ -290,6 +290,17 @@ pub trait Surface: Send + Sync + std::fmt::Debug {
         None
     }
 
+    /// The lowest and highest heights over each interval between consecutive signed radii
+    /// `ts` (ascending) of the line through the axis along `(c, s)`, bounding every value
+    /// [`Surface::kept_radial`] gives there, where the surface keeps that line's section (the
+    /// L1 RBF's cubics: their extremes) and all of `ts` lies where the surface is defined;
+    /// `None` otherwise (the default). The compensation skips the stretches of the arc these
+    /// bounds show cannot hold the contact.
+    fn kept_ranges(&self, c: f64, s: f64, ts: &[f64]) -> Option<Vec<[f64; 2]>> {
+        let _ = (c, s, ts);
+        None
+    }
+
     /// Whether the surface keeps work along the lines it is asked about from one point to the
     /// next (scattered data's line windows, [`crate::surface::scattered::interpolate::cache`]):
     /// a walk on several cores then gives each worker long runs of turns, whose nose arcs slide

@@ -46,7 +46,7 @@ pub mod interpolate;
 use super::{Line, Local, PartDisc, Radial, Surface, UndefinedError};
 use crate::field::{FieldError, finite, in_range};
 use crate::surface::DataFile;
-use interpolate::cache::{Along, Made};
+use interpolate::cache::Made;
 use interpolate::data::{Grid, Samples, duplicate_error};
 use interpolate::hull::ConvexHull;
 use interpolate::line_section::{self, LineSection};
@@ -418,7 +418,7 @@ impl Scattered {
                     }
                 }
             }
-            kinks[from..].sort_by(f64::total_cmp);
+            kinks[from..].sort_unstable_by(f64::total_cmp);
         }
         kinks.dedup();
         let cubic = |piece: &Piece, mid: f64| {
@@ -598,14 +598,14 @@ impl Surface for Scattered {
                 Made::default()
             }
         };
-        let mut got = Along::default();
+        let mut got = cache::spare_along();
         let range = [t0, t1];
         cache::along(self.id, &self.index, (line, self.n), range, &make, &mut got);
         let switches = got.pieces.iter().skip(1).map(|p| p.start);
         let inside = |t: &f64| *t > t0 && *t < t1;
         out.extend(merged(switches, &got.kinks).filter(inside));
         let section = l1.then(|| LineSection::new(got.stretches));
-        cache::remember_line(self.id, (line, t1), got.pieces, section);
+        cache::remember_line(self.id, (line, t1), got.pieces, section, got.kinks);
     }
 
     /// Yes: the walked chunks of each line ([`cache::along`]).
@@ -619,6 +619,16 @@ impl Surface for Scattered {
         let radial = cache::radial_on_last_line(self.id, Line::radial(c, s), rho)?;
         let (x, y) = (rho * c, rho * s);
         Some(self.check_domain(x, y).map(|()| radial))
+    }
+
+    /// From the section of the last line asked about, where it is that line and the ends of
+    /// `ts` lie in the data's convex hull (so the whole stretch does).
+    fn kept_ranges(&self, c: f64, s: f64, ts: &[f64]) -> Option<Vec<[f64; 2]>> {
+        let inside = |t: &f64| self.check_domain(t * c, t * s).is_ok();
+        if !(ts.first().is_some_and(inside) && ts.last().is_some_and(inside)) {
+            return None;
+        }
+        cache::ranges_on_last_line(self.id, Line::radial(c, s), ts)
     }
 
     fn describe(&self) -> String {

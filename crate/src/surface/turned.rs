@@ -79,6 +79,17 @@ impl Surface for Turned {
         )
     }
 
+    /// The design's along the mirrored line, turned over.
+    fn kept_ranges(&self, c: f64, s: f64, ts: &[f64]) -> Option<Vec<[f64; 2]>> {
+        let ranges = self.inner.kept_ranges(-c, s, ts)?;
+        Some(
+            ranges
+                .into_iter()
+                .map(|[low, high]| [-high, -low])
+                .collect(),
+        )
+    }
+
     /// The design's at the mirrored point (x → −x keeps distances).
     fn kink_free_radius(&self, x: f64, y: f64) -> f64 {
         self.inner.kink_free_radius(-x, y)

@@ -79,6 +79,8 @@ struct LastLine {
     t1: f64,
     pieces: Vec<Piece>,
     section: Option<LineSection>,
+    /// The buffer the line's kinks came in, kept for the next line's ([`spare_along`]).
+    kinks: Vec<f64>,
 }
 
 /// The walked chunks `first..` of one line of one surface, in order.
@@ -306,12 +308,13 @@ impl LineWindow {
 }
 
 /// Remembers the pieces of surface `id` along `line` up to `t1` (the first starts at t0) and
-/// its section there, if any.
+/// its section there, if any, and keeps the buffer `kinks` for [`spare_along`].
 pub fn remember_line(
     id: u64,
     (line, t1): (Line, f64),
     pieces: Vec<Piece>,
     section: Option<LineSection>,
+    kinks: Vec<f64>,
 ) {
     LAST_LINE.with(|c| {
         *c.borrow_mut() = Some(LastLine {
@@ -320,8 +323,31 @@ pub fn remember_line(
             t1,
             pieces,
             section,
+            kinks,
         })
     });
+}
+
+/// Empty buffers for the next [`along`], made of the last line's, which is forgotten: every
+/// nose arc's pieces, kinks and stretches are gathered into the memory of the arc's before,
+/// not into fresh allocations.
+pub fn spare_along() -> Along {
+    let last = LAST_LINE.with(|c| c.borrow_mut().take());
+    let Some(last) = last else {
+        return Along::default();
+    };
+    let mut spare = Along {
+        pieces: last.pieces,
+        kinks: last.kinks,
+        stretches: last
+            .section
+            .map(LineSection::into_stretches)
+            .unwrap_or_default(),
+    };
+    spare.pieces.clear();
+    spare.kinks.clear();
+    spare.stretches.clear();
+    spare
 }
 
 /// The neighbour set at `q` from the remembered pieces of surface `id`, when q lies on their
@@ -351,6 +377,17 @@ pub fn radial_on_last_line(id: u64, line: Line, t: f64) -> Option<Radial> {
         let last = c.as_ref().filter(|l| l.id == id && l.line == line)?;
         let section = last.section.as_ref()?;
         section.radial_at(t, SWITCH_BAND + 1e-15 * t.abs())
+    })
+}
+
+/// The lowest and highest heights of the remembered section of surface `id` on `line` over
+/// each interval between consecutive `ts` (ascending), every sample there included
+/// ([`LineSection::ranges_over`]); `None` where it has no section there.
+pub fn ranges_on_last_line(id: u64, line: Line, ts: &[f64]) -> Option<Vec<[f64; 2]>> {
+    LAST_LINE.with(|c| {
+        let c = c.borrow();
+        let last = c.as_ref().filter(|l| l.id == id && l.line == line)?;
+        last.section.as_ref()?.ranges_over(ts)
     })
 }
 

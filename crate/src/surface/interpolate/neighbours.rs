@@ -36,10 +36,23 @@ pub const MAX_NEIGHBOURS: usize = 16;
 const MAX_EVENTS: usize = 4096;
 
 /// A set of up to [`MAX_NEIGHBOURS`] point indices, ascending.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Eq)]
 pub struct NeighbourSet {
     idx: [u32; MAX_NEIGHBOURS],
     len: usize,
+}
+
+/// The same indices: compared one by one up to the first that differs, inline, rather than
+/// the whole array through a library `memcmp` (sets are compared at every piece of a walk).
+impl PartialEq for NeighbourSet {
+    fn eq(&self, other: &Self) -> bool {
+        self.len == other.len
+            && self
+                .indices()
+                .iter()
+                .zip(other.indices())
+                .all(|(a, b)| a == b)
+    }
 }
 
 impl NeighbourSet {

@@ -433,9 +433,45 @@ impl NoseCompensator {
     /// The largest F over `[lo, hi]` by the sampled search of the whole arc (module docs),
     /// skipping the groups of samples that cannot hold it ([`Self::live_groups`]).
     fn search(&self, section: &Section, lo: f64, hi: f64) -> Result<Sample, UndefinedError> {
-        let kinks = self.kink_angles(section, lo, hi, lo, hi);
+        let offsets = self.kink_offsets(section, lo, hi);
         let live = self.live_groups(section, lo, hi)?;
+        let centres = self.live_kinks(section, lo, hi, offsets, &live);
+        let kinks = self.kink_sides(centres, [lo, hi], [lo, hi]);
         self.scan(section, lo, hi, &kinks, &live)
+    }
+
+    /// The angles of the kinks at `offsets` (ascending along the line) that lie in a `live`
+    /// group's stretch of the line, widened by 10⁻⁹ mm (the sides of every other kink lie in
+    /// groups the scan leaves out): the others' angles are not needed. All of them where the
+    /// offsets are not ascending.
+    fn live_kinks(
+        &self,
+        section: &Section,
+        lo: f64,
+        hi: f64,
+        mut offsets: Vec<f64>,
+        live: &[bool],
+    ) -> Vec<f64> {
+        if live.iter().all(|&l| l) {
+            offsets
+                .iter_mut()
+                .for_each(|t| *t = self.kink_angle(section, *t));
+            return offsets;
+        }
+        let n = self.samples;
+        let t = |i: usize| section.rho_s + self.r * self.grid_point(lo, hi, i.min(n))[1];
+        let mut ranges = (0..live.len())
+            .filter(|&g| live[g])
+            .map(|g| [t(g * GROUP) - 1e-9, t((g + 1) * GROUP) + 1e-9])
+            .peekable();
+        offsets.retain(|&k| {
+            while ranges.next_if(|r| r[1] < k).is_some() {}
+            ranges.peek().is_some_and(|r| r[0] <= k)
+        });
+        offsets
+            .iter_mut()
+            .for_each(|t| *t = self.kink_angle(section, *t));
+        offsets
     }
 
     /// The search's i-th grid angle over `[lo, hi]`, with its sine and cosine.
@@ -617,7 +653,19 @@ impl NoseCompensator {
     /// kink's angle is computed as for the whole arc (it does not depend on the interval asked).
     fn kink_angles(&self, section: &Section, lo: f64, hi: f64, from: f64, to: f64) -> Vec<f64> {
         let margin = KINK_OFFSET + 1e-9;
-        let mut angles = self.kink_centres(section, (from - margin).max(lo), (to + margin).min(hi));
+        let centres = self.kink_centres(section, (from - margin).max(lo), (to + margin).min(hi));
+        self.kink_sides(centres, [lo, hi], [from, to])
+    }
+
+    /// The angles just before and after each of the kinks at `centres` (ascending along the
+    /// line) and the measured edge's table angles, ascending: those in `[from, to]` inside the
+    /// arc `[lo, hi]` ([`Self::kink_angles`]).
+    fn kink_sides(
+        &self,
+        mut angles: Vec<f64>,
+        [lo, hi]: [f64; 2],
+        [from, to]: [f64; 2],
+    ) -> Vec<f64> {
         let table: &[f64] = self.waviness.as_ref().map_or(&[], |w| w.angles());
         if angles.is_empty() && table.is_empty() {
             return angles;
@@ -634,7 +682,7 @@ impl NoseCompensator {
         angles.extend_from_slice(table);
         angles.retain(|a| *a > lo && *a < hi && *a >= from && *a <= to);
         if !angles.is_sorted_by(|a, b| a.total_cmp(b).is_le()) {
-            angles.sort_by(f64::total_cmp);
+            angles.sort_unstable_by(f64::total_cmp);
         }
         angles
     }
@@ -643,21 +691,32 @@ impl NoseCompensator {
     /// ([`Surface::slope_kinks`]), in the order the surface lists them (ascending along the
     /// line).
     fn kink_centres(&self, section: &Section, lo: f64, hi: f64) -> Vec<f64> {
-        let rho_s = section.rho_s;
-        let mut angles = Vec::new();
-        section.surface.slope_kinks(
-            Line::radial(section.c, section.s),
-            rho_s + self.lateral(lo),
-            rho_s + self.lateral(hi),
-            &mut angles,
-        );
+        let mut angles = self.kink_offsets(section, lo, hi);
         for t in &mut angles {
-            *t = match &self.waviness {
-                None => ((*t - rho_s) / self.r).clamp(-1.0, 1.0).asin(),
-                Some(w) => w.angle_at_offset(*t - rho_s),
-            };
+            *t = self.kink_angle(section, *t);
         }
         angles
+    }
+
+    /// Where the section's slope kinks under the arc lie on its line ([`Surface::slope_kinks`]).
+    fn kink_offsets(&self, section: &Section, lo: f64, hi: f64) -> Vec<f64> {
+        let mut offsets = Vec::new();
+        section.surface.slope_kinks(
+            Line::radial(section.c, section.s),
+            section.rho_s + self.lateral(lo),
+            section.rho_s + self.lateral(hi),
+            &mut offsets,
+        );
+        offsets
+    }
+
+    /// The nose angle that reaches the point `t` of the section's line.
+    fn kink_angle(&self, section: &Section, t: f64) -> f64 {
+        let rho_s = section.rho_s;
+        match &self.waviness {
+            None => ((t - rho_s) / self.r).clamp(-1.0, 1.0).asin(),
+            Some(w) => w.angle_at_offset(t - rho_s),
+        }
     }
 }
 

@@ -224,9 +224,17 @@ fn flag_row(
     let mut row = vec![None; cols];
     let mut slopes = vec![0.0; cols];
     let (s, c) = (TAU * i as f64 / ANGLES as f64).sin_cos();
+    // The kinks first: a surface that keeps the section of the line asked about then answers
+    // the samples from it ([`Surface::kept_radial`]).
+    let mut kinks = Vec::new();
+    let end = delta * (cols - 1) as f64;
+    surface.slope_kinks(Line::radial(c, s), 0.0, end, &mut kinks);
     for j in 0..cols {
         let rho = delta * j as f64;
-        let l = surface.local(rho * c, rho * s)?.radial(c, s);
+        let l = match surface.kept_radial(c, s, rho) {
+            Some(kept) => kept?,
+            None => surface.local(rho * c, rho * s)?.radial(c, s),
+        };
         let stretch = (1.0 + l.slope * l.slope).powf(1.5);
         let kappa = l.curvature_term / stretch;
         if kappa > 1.0 / r {
@@ -253,26 +261,24 @@ fn flag_row(
             }
         }
     }
-    flag_reported_kinks(surface, (c, s), delta, &mut row)?;
+    flag_reported_kinks(surface, (c, s), delta, &kinks, &mut row)?;
     Ok(row)
 }
 
-/// Flags the slope kinks the surface reports along the section ([`Surface::slope_kinks`]) where
-/// the slope rises across the kink: a valley the nose cannot reach, however small the jump
-/// (the sampled test above only sees jumps steeper than δ/r).
+/// Flags the slope `kinks` the surface reports along the section ([`Surface::slope_kinks`])
+/// where the slope rises across the kink: a valley the nose cannot reach, however small the
+/// jump (the sampled test above only sees jumps steeper than δ/r).
 fn flag_reported_kinks(
     surface: &dyn Surface,
     (c, s): (f64, f64),
     delta: f64,
+    kinks: &[f64],
     row: &mut [Option<Flag>],
 ) -> Result<(), UndefinedError> {
-    let end = delta * (row.len() - 1) as f64;
-    let mut kinks = Vec::new();
-    surface.slope_kinks(Line::radial(c, s), 0.0, end, &mut kinks);
     let slope = |t: f64| -> Result<f64, UndefinedError> {
         Ok(surface.local(t * c, t * s)?.radial(c, s).slope)
     };
-    for t in kinks {
+    for &t in kinks {
         let step = KINK_SIDE * t.abs().max(1.0);
         if slope(t + step)? > slope(t - step)? {
             let j = ((t / delta).round() as usize).min(row.len() - 1);

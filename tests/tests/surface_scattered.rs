@@ -728,6 +728,40 @@ fn every_point_of_a_planned_path_touches_without_cutting() {
 }
 
 #[test]
+fn a_walk_computed_line_by_line_gives_the_points_of_the_paths_order() {
+    // The L1 kernel keeps each line's walk, so a walk's batches compute their points line by
+    // line (the points of one angle, turn after turn) on the workers: every point, written in
+    // the path's order, is the one computed point by point along the path, to the bit.
+    let points = jittered(lenslet, 0.06, 0.75, 0.0, 21);
+    let job = format!(
+        r#"{{"name":"lines","part":{{"diameter_mm":1.1}},
+            "surface":{{"type":"scattered","method":"rbf","rbf_distance":"l1","data":{{"text":{}}}}},
+            "tool":{{"nose_radius_mm":0.05,"included_angle_deg":80}},"machine":{{"spindle_rpm":1000}},
+            "strategy":{{"feed_mm_per_rev":0.01,"start_angle_deg":10,"sampling":{{"type":"constant_angle","points_per_rev":36}}}}}}"#,
+        serde_json::to_string(&csv(&points)).unwrap()
+    );
+    let job = Job::from_json(&job).unwrap();
+    let path = spiralcam::tool::ToolPath::new(&job).unwrap();
+    let in_order: Vec<_> = path.points().map(|p| p.unwrap()).collect();
+    let mut walked = Vec::new();
+    let mut progress = |_| std::ops::ControlFlow::Continue(());
+    path.for_each_point(
+        spiralcam::progress::Stage::Path,
+        &mut progress,
+        &mut |p, _| {
+            walked.push(*p);
+            Ok::<(), spiralcam::path::PathError>(())
+        },
+    )
+    .unwrap();
+    assert_eq!(walked.len(), 1981);
+    for (w, p) in walked.iter().zip(&in_order) {
+        assert_eq!(w, p, "point {}", p.index);
+        assert_eq!(w.z.to_bits(), p.z.to_bits(), "point {}", p.index);
+    }
+}
+
+#[test]
 fn the_gouge_check_detects_a_cut_at_a_jump() {
     // The oracle itself: a nose 1 nm lower than the planned one must be reported as a cut, and
     // without the kinks' samples a cut into the higher side of a jump can go unseen.

@@ -391,6 +391,13 @@ impl Spiral {
         }
     }
 
+    /// On a constant-angle spiral, the step k mod N of its turn's N angles of the point at
+    /// `theta` (the points of one step share their radial line on every turn); `None` on any
+    /// other spiral.
+    pub fn turn_step(&self, theta: f64) -> Option<usize> {
+        self.step_in_turn(theta).map(|(step, _)| step)
+    }
+
     /// On a constant-angle spiral of N points a turn, the step k mod N of the point at `theta`
     /// and N; `None` on any other.
     fn step_in_turn(&self, theta: f64) -> Option<(usize, usize)> {

@@ -221,6 +221,50 @@ impl ToolPath {
         })
     }
 
+    /// The order in which to compute a batch's points (indices into `input`) where the surface
+    /// keeps the lines it is asked about ([`Surface::keeps_lines`]) and each point's contact is
+    /// found without a warm start (one-way, no concavity certificate): on a constant-angle
+    /// spiral, line by line (the points of one step of the turn, turn after turn), so that each
+    /// line's walk is made once and read while it is in the cache, rather than the lines of a
+    /// whole turn taken in turn. `None` (the path's order) otherwise. Each point's contact does
+    /// not depend on the order (the kept walks and systems give the same bits as fresh ones).
+    fn line_order(&self, input: &[(u64, SpiralPoint, bool)]) -> Option<Vec<usize>> {
+        let one_way = self.job.strategy.compensation != Compensation::TwoWay;
+        if !(self.surface.keeps_lines() && one_way && self.concavity.is_none()) {
+            return None;
+        }
+        let mut keyed = Vec::with_capacity(input.len());
+        for (k, (_, sp, _)) in input.iter().enumerate() {
+            keyed.push((self.spiral.turn_step(sp.theta)?, k));
+        }
+        keyed.sort_unstable();
+        Some(keyed.into_iter().map(|(_, k)| k).collect())
+    }
+
+    /// The points of `input` computed in `order` ([`Self::line_order`]) into `batch`, in the
+    /// input's order; the first point that fails in the input's order gives the error.
+    fn points_in_order(
+        &self,
+        input: &[(u64, SpiralPoint, bool)],
+        order: &[usize],
+        batch: &mut Vec<Batched>,
+    ) -> Result<(), UndefinedError> {
+        let mut computed: Vec<_> = order
+            .iter()
+            .map(|&k| (k, self.path_point(input[k].0, input[k].1, &mut None)))
+            .collect();
+        computed.sort_unstable_by_key(|(k, _)| *k);
+        for ((_, result), &(_, _, handed_on)) in computed.into_iter().zip(input) {
+            let (point, folds) = result?;
+            batch.push(Batched {
+                point,
+                folds,
+                handed_on,
+            });
+        }
+        Ok(())
+    }
+
     /// [`Self::path_point`] in a walk along the path: `warm` holds the start the contacts of
     /// the points before give ([`WarmStart`]), dropped at the start of each [`WARM_RUN`], and
     /// takes this one's.
@@ -496,6 +540,11 @@ impl ToolPath {
                 }
                 let (batch, out) = &mut slot[0];
                 batch.clear();
+                if let Some(order) = self.line_order(input) {
+                    self.points_in_order(input, &order, batch)
+                        .map_err(|e| E::from(e.into()))?;
+                    return work(batch, out);
+                }
                 let mut warm = None;
                 for &(index, sp, handed_on) in input {
                     let (point, folds) = self

@@ -45,6 +45,9 @@ const NONE: (f64, usize) = (f64::INFINITY, usize::MAX);
 #[derive(Debug)]
 pub struct Kinetic {
     cand: Vec<Candidate>,
+    /// The members' positions in `cand`, ascending: a crossing is looked for against these,
+    /// not by filtering every candidate.
+    members: Vec<usize>,
     /// Per candidate (outsiders only): earliest crossing τ and the member it overtakes.
     best: Vec<(f64, usize)>,
     tie: f64,
@@ -55,8 +58,10 @@ pub struct Kinetic {
 impl Kinetic {
     /// Starts at `tau` with `cand` (members marked), ending at `tau_end`; `tie` is δ.
     pub fn new(cand: Vec<Candidate>, tie: f64, tau: f64, tau_end: f64) -> Self {
+        let members = (0..cand.len()).filter(|&i| cand[i].member).collect();
         let mut k = Self {
             best: vec![NONE; cand.len()],
+            members,
             cand,
             tie,
             tau,
@@ -73,11 +78,11 @@ impl Kinetic {
     /// The earliest crossing of outsider `o` with any member.
     fn against_members(&self, o: usize) -> (f64, usize) {
         let q = &self.cand[o];
-        self.cand
+        self.members
             .iter()
-            .enumerate()
-            .filter(|(_, p)| p.member)
-            .filter_map(|(pi, p)| crossing(p, q, self.tie, self.tau, self.tau_end).map(|t| (t, pi)))
+            .filter_map(|&pi| {
+                crossing(&self.cand[pi], q, self.tie, self.tau, self.tau_end).map(|t| (t, pi))
+            })
             .fold(NONE, |b, c| if c.0 < b.0 { c } else { b })
     }
 
@@ -95,6 +100,9 @@ impl Kinetic {
         }
         self.cand[pi].member = false;
         self.cand[qi].member = true;
+        self.members.retain(|&m| m != pi);
+        let at = self.members.partition_point(|&m| m < qi);
+        self.members.insert(at, qi);
         self.best[qi] = NONE;
         self.tau = te;
         self.best[pi] = self.against_members(pi);

@@ -1237,7 +1237,7 @@ mod tests {
         // the scan of every group finds, to the bit, and leaves out some at most points.
         use crate::surface::DataFile;
         use crate::surface::PartDisc;
-        use crate::surface::scattered::interpolate::data::{Grid, Samples};
+        use crate::surface::scattered::interpolate::data::Samples;
         use crate::surface::scattered::{Method, Scattered, ScatteredSpec};
         let lenslets = |x: f64, y: f64| {
             let (u, v) = (x - x.round(), y - y.round());
@@ -1250,26 +1250,15 @@ mod tests {
             }
         };
         let (h, k) = (0.05, 120);
-        let g = Grid {
-            x0: -(k as f64) * h,
-            y0: -(k as f64) * h,
-            dx: h,
-            dy: h,
-            nx: 2 * k + 1,
-            ny: 2 * k + 1,
-        };
-        let z = (0..g.ny)
-            .flat_map(|j| (0..g.nx).map(move |i| (i, j)))
-            .map(|(i, j)| {
-                let p = g.node(i, j);
-                lenslets(p[0], p[1])
-            })
+        let points: Vec<[f64; 3]> = (-k..=k)
+            .flat_map(|j| (-k..=k).map(move |i| (f64::from(i) * h, f64::from(j) * h)))
+            .map(|(x, y)| [x, y, lenslets(x, y)])
             .collect();
         let spec = ScatteredSpec {
             method: Method::Rbf,
             ..ScatteredSpec::new(DataFile::default())
         };
-        let samples = Samples::from_grid(g, z, Vec::new()).unwrap();
+        let samples = Samples::from_points(&points).unwrap();
         let surface = Scattered::from_samples(&spec, samples, PartDisc::centred(5.0)).unwrap();
         let comp = NoseCompensator::new(&tool(0.5), surface.feature_length_mm(), 5.0).unwrap();
         let (mut pruned, mut n) = (0, 0);

@@ -229,8 +229,7 @@ impl ToolPath {
     /// whole turn taken in turn. `None` (the path's order) otherwise. Each point's contact does
     /// not depend on the order (the kept walks and systems give the same bits as fresh ones).
     fn line_order(&self, input: &[(u64, SpiralPoint, bool)]) -> Option<Vec<usize>> {
-        let one_way = self.job.strategy.compensation != Compensation::TwoWay;
-        if !(self.surface.keeps_lines() && one_way && self.concavity.is_none()) {
+        if !self.walks_line_by_line() {
             return None;
         }
         let mut keyed = Vec::with_capacity(input.len());
@@ -239,6 +238,18 @@ impl ToolPath {
         }
         keyed.sort_unstable();
         Some(keyed.into_iter().map(|(_, k)| k).collect())
+    }
+
+    /// Whether a walk's batches are computed line by line ([`Self::line_order`]): the surface
+    /// keeps its lines, no contact is searched from a warm start (one-way, no concavity
+    /// certificate), and the spiral is constant-angle (a point's line depends on its step in
+    /// the turn alone).
+    fn walks_line_by_line(&self) -> bool {
+        let one_way = self.job.strategy.compensation != Compensation::TwoWay;
+        self.surface.keeps_lines()
+            && one_way
+            && self.concavity.is_none()
+            && self.spiral.turn_step(0.0).is_some()
     }
 
     /// The points of `input` computed in `order` ([`Self::line_order`]) into `batch`, in the
@@ -351,7 +362,9 @@ impl ToolPath {
     /// each is started from the contact before it, as the walk computes every point but a
     /// run's first ([`WARM_RUN`]), so this is the time of the points of a walk; the runs'
     /// first points, each searched without a start, are computed before the clock starts
-    /// (a search of the whole arc costs more than a step from the last contact).
+    /// (a search of the whole arc costs more than a step from the last contact). Where the
+    /// walk goes line by line ([`Self::line_order`]) each timed point's line is first walked
+    /// by the point one turn outward, untimed, as in the walk.
     pub fn probe_timed(
         &self,
         n: usize,
@@ -374,21 +387,37 @@ impl ToolPath {
             let p = self.path_point(index(a), *a, &mut warm)?.0;
             firsts.push((p, warm));
         }
-        let start = clock();
+        let line_by_line = self.walks_line_by_line();
+        let mut elapsed = 0.0;
         let mut probes = Vec::with_capacity(runs.len());
         for ([a, b, c], (first, mut warm)) in runs.into_iter().zip(firsts) {
+            if line_by_line {
+                // Such a walk finds each point's line walked as far as the point one turn
+                // outward, computed just before it: so do the timed points, whose lines are
+                // walked there first, untimed (a point beyond the part is left out).
+                for p in [b, c] {
+                    let outward = SpiralPoint {
+                        rho: p.rho + self.spiral.feed_mm(),
+                        theta: p.theta - std::f64::consts::TAU,
+                    };
+                    let _ = self.path_point(0, outward, &mut None);
+                }
+            }
             let i = index(&a);
             let advance = a.rho - b.rho;
+            let start = clock();
+            let points = [
+                first,
+                self.path_point(i + 1, b, &mut warm)?.0,
+                self.path_point(i + 2, c, &mut warm)?.0,
+            ];
+            elapsed += clock() - start;
             probes.push(Probe {
-                points: [
-                    first,
-                    self.path_point(i + 1, b, &mut warm)?.0,
-                    self.path_point(i + 2, c, &mut warm)?.0,
-                ],
+                points,
                 per_mm: if advance > 0.0 { 1.0 / advance } else { 0.0 },
             });
         }
-        Ok((probes, clock() - start))
+        Ok((probes, elapsed))
     }
 
     /// Zones where the nose cannot reach the surface (see [`crate::tool::reach`]); `progress`

@@ -452,7 +452,8 @@ impl NoseCompensator {
         mut offsets: Vec<f64>,
         live: &[bool],
     ) -> Vec<f64> {
-        if live.iter().all(|&l| l) {
+        let ascending = offsets.is_sorted_by(|a, b| a <= b);
+        if live.iter().all(|&l| l) || !ascending {
             offsets
                 .iter_mut()
                 .for_each(|t| *t = self.kink_angle(section, *t));

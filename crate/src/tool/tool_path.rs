@@ -363,8 +363,8 @@ impl ToolPath {
     /// run's first ([`WARM_RUN`]), so this is the time of the points of a walk; the runs'
     /// first points, each searched without a start, are computed before the clock starts
     /// (a search of the whole arc costs more than a step from the last contact). Where the
-    /// walk goes line by line ([`Self::line_order`]) each timed point's line is first walked
-    /// by the point one turn outward, untimed, as in the walk.
+    /// walk goes line by line (scattered data on a constant-angle spiral), each timed point's
+    /// line is first walked by the point one turn outward, untimed, as in the walk.
     pub fn probe_timed(
         &self,
         n: usize,

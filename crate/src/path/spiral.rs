@@ -410,8 +410,9 @@ impl Spiral {
         Some((step as usize, points_per_rev as usize))
     }
 
-    /// N, the points of a turn, on a constant-angle spiral (not one given as a list).
-    fn turn_points(&self) -> Option<u32> {
+    /// N, the points of a turn, on a constant-angle spiral (not one given as a list); `None`
+    /// on any other.
+    pub fn turn_points(&self) -> Option<u32> {
         match self.sampling {
             Sampling::ConstantAngle { points_per_rev } if self.explicit.is_none() => {
                 Some(points_per_rev)

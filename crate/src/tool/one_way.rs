@@ -434,22 +434,36 @@ impl NoseCompensator {
     /// skipping the groups of samples that cannot hold it ([`Self::live_groups`]).
     fn search(&self, section: &Section, lo: f64, hi: f64) -> Result<Sample, UndefinedError> {
         let offsets = self.kink_offsets(section, lo, hi);
-        let live = self.live_groups(section, lo, hi)?;
-        let centres = self.live_kinks(section, lo, hi, offsets, &live);
+        let ends = self.group_ends(lo, hi);
+        let live = self.live_groups(section, [lo, hi], &ends)?;
+        let centres = self.live_kinks(section, offsets, &ends, &live);
         let kinks = self.kink_sides(centres, [lo, hi], [lo, hi]);
         self.scan(section, lo, hi, &kinks, &live)
     }
 
+    /// The grid points (angle, sine, cosine) that bound the search's groups of [`GROUP`]
+    /// intervals over `[lo, hi]`, the first and the last the arc's ends.
+    fn group_ends(&self, lo: f64, hi: f64) -> Vec<[f64; 3]> {
+        let n = self.samples;
+        (0..=n.div_ceil(GROUP))
+            .map(|g| self.grid_point(lo, hi, (g * GROUP).min(n)))
+            .collect()
+    }
+
+    /// Where the grid point `p` (angle, sine, cosine) reaches the section's line.
+    fn offset_of(&self, section: &Section, p: [f64; 3]) -> f64 {
+        section.rho_s + self.r * p[1]
+    }
+
     /// The angles of the kinks at `offsets` (ascending along the line) that lie in a `live`
-    /// group's stretch of the line, widened by 10⁻⁹ mm (the sides of every other kink lie in
-    /// groups the scan leaves out): the others' angles are not needed. All of them where the
-    /// offsets are not ascending.
+    /// group's stretch of the line (between its `ends`), widened by 10⁻⁹ mm (the sides of
+    /// every other kink lie in groups the scan leaves out): the others' angles are not
+    /// needed. All of them where the offsets are not ascending.
     fn live_kinks(
         &self,
         section: &Section,
-        lo: f64,
-        hi: f64,
         mut offsets: Vec<f64>,
+        ends: &[[f64; 3]],
         live: &[bool],
     ) -> Vec<f64> {
         let ascending = offsets.is_sorted_by(|a, b| a <= b);
@@ -459,11 +473,10 @@ impl NoseCompensator {
                 .for_each(|t| *t = self.kink_angle(section, *t));
             return offsets;
         }
-        let n = self.samples;
-        let t = |i: usize| section.rho_s + self.r * self.grid_point(lo, hi, i.min(n))[1];
+        let t = |g: usize| self.offset_of(section, ends[g]);
         let mut ranges = (0..live.len())
             .filter(|&g| live[g])
-            .map(|g| [t(g * GROUP) - 1e-9, t((g + 1) * GROUP) + 1e-9])
+            .map(|g| [t(g) - 1e-9, t(g + 1) + 1e-9])
             .peekable();
         offsets.retain(|&k| {
             while ranges.next_if(|r| r[1] < k).is_some() {}
@@ -486,29 +499,24 @@ impl NoseCompensator {
         }
     }
 
-    /// Which groups of [`GROUP`] grid intervals may hold the search's maximum. Where the
-    /// surface bounds its kept section ([`Surface::kept_ranges`]: the L1 RBF's cubics between
-    /// the kinks just listed), F on a group's stretch of the arc is at most the section's
-    /// highest there plus r times the largest cos a, plus [`BOUND_MARGIN`]; a group whose
-    /// bound is below F at a grid sample (the middle of the group with the highest bound) holds
-    /// neither a sample nor a refined peak that could be the search's answer, and is skipped.
-    /// Every group is live otherwise.
+    /// Which of the groups between `ends` ([`Self::group_ends`] over `[lo, hi]`) may hold the
+    /// search's maximum. Where the surface bounds its kept section ([`Surface::kept_ranges`]:
+    /// the L1 RBF's cubics between the kinks just listed), F on a group's stretch of the arc
+    /// is at most the section's highest there plus r times the largest cos a, plus
+    /// [`BOUND_MARGIN`]; a group whose bound is below F at a grid sample (the middle of the
+    /// group with the highest bound) holds neither a sample nor a refined peak that could be
+    /// the search's answer, and is skipped. Every group is live otherwise.
     fn live_groups(
         &self,
         section: &Section,
-        lo: f64,
-        hi: f64,
+        [lo, hi]: [f64; 2],
+        ends: &[[f64; 3]],
     ) -> Result<Vec<bool>, UndefinedError> {
-        let n = self.samples;
-        let groups = n.div_ceil(GROUP);
-        let all = vec![true; groups];
+        let all = vec![true; ends.len() - 1];
         if self.waviness.is_some() {
             return Ok(all);
         }
-        let ends: Vec<[f64; 3]> = (0..=groups)
-            .map(|g| self.grid_point(lo, hi, (g * GROUP).min(n)))
-            .collect();
-        let ts: Vec<f64> = ends.iter().map(|e| section.rho_s + self.r * e[1]).collect();
+        let ts: Vec<f64> = ends.iter().map(|&e| self.offset_of(section, e)).collect();
         let Some(ranges) = section.surface.kept_ranges(section.c, section.s, &ts) else {
             return Ok(all);
         };
@@ -532,7 +540,7 @@ impl NoseCompensator {
                 (0, f64::NEG_INFINITY),
                 |m, (g, &u)| if u > m.1 { (g, u) } else { m },
             );
-        let middle = (best * GROUP + ((best + 1) * GROUP).min(n)) / 2;
+        let middle = (best * GROUP + ((best + 1) * GROUP).min(self.samples)) / 2;
         let [a, sa, ca] = self.grid_point(lo, hi, middle);
         let floor = section.at_sin_cos(a, sa, ca)?.f;
         if !(bound.is_finite() && floor.is_finite() && floor <= bound) {
@@ -1268,7 +1276,9 @@ mod tests {
                 continue;
             }
             let kinks = comp.kink_angles(&section, lo, hi, lo, hi);
-            let live = comp.live_groups(&section, lo, hi).unwrap();
+            let live = comp
+                .live_groups(&section, [lo, hi], &comp.group_ends(lo, hi))
+                .unwrap();
             let every = comp.scan(&section, lo, hi, &kinks, &vec![true; live.len()]);
             let found = comp.search(&section, lo, hi).unwrap();
             let every = every.unwrap();

@@ -249,7 +249,7 @@ impl ToolPath {
         self.surface.keeps_lines()
             && one_way
             && self.concavity.is_none()
-            && self.spiral.turn_step(0.0).is_some()
+            && self.spiral.turn_points().is_some()
     }
 
     /// The points of `input` computed in `order` ([`Self::line_order`]) into `batch`, in the
@@ -355,7 +355,7 @@ impl ToolPath {
     /// where a surface that is undefined or not finite shows itself before any output). Their
     /// indices are estimates, exact for constant-angle sampling.
     pub fn probe(&self, n: usize) -> Result<Vec<Probe>, UndefinedError> {
-        Ok(self.probe_timed(n, &|| 0.0)?.0)
+        Ok(self.probe_runs(n, None)?.0)
     }
 
     /// [`Self::probe`], and the time by `clock` that the runs' second and third points took:
@@ -370,6 +370,17 @@ impl ToolPath {
         n: usize,
         clock: &dyn Fn() -> f64,
     ) -> Result<(Vec<Probe>, f64), UndefinedError> {
+        self.probe_runs(n, Some(clock))
+    }
+
+    /// [`Self::probe`], timed by `clock` where one is given ([`Self::probe_timed`]; untimed,
+    /// the time is 0 and no line is walked beforehand).
+    fn probe_runs(
+        &self,
+        n: usize,
+        clock: Option<&dyn Fn() -> f64>,
+    ) -> Result<(Vec<Probe>, f64), UndefinedError> {
+        let now = || clock.map_or(0.0, |c| c());
         let r0 = self.spiral.start_radius_mm();
         let total = self.spiral.point_count_estimate();
         let runs: Vec<[SpiralPoint; 3]> = (0..n)
@@ -387,7 +398,7 @@ impl ToolPath {
             let p = self.path_point(index(a), *a, &mut warm)?.0;
             firsts.push((p, warm));
         }
-        let line_by_line = self.walks_line_by_line();
+        let line_by_line = clock.is_some() && self.walks_line_by_line();
         let mut elapsed = 0.0;
         let mut probes = Vec::with_capacity(runs.len());
         for ([a, b, c], (first, mut warm)) in runs.into_iter().zip(firsts) {
@@ -405,13 +416,13 @@ impl ToolPath {
             }
             let i = index(&a);
             let advance = a.rho - b.rho;
-            let start = clock();
+            let start = now();
             let points = [
                 first,
                 self.path_point(i + 1, b, &mut warm)?.0,
                 self.path_point(i + 2, c, &mut warm)?.0,
             ];
-            elapsed += clock() - start;
+            elapsed += now() - start;
             probes.push(Probe {
                 points,
                 per_mm: if advance > 0.0 { 1.0 / advance } else { 0.0 },

@@ -31,26 +31,33 @@ pub struct Cubic {
 impl Cubic {
     /// Its value, slope and second derivative at t.
     pub fn radial(&self, t: f64) -> Radial {
-        let [k0, k1, k2, k3] = self.k;
+        let [_, k1, k2, k3] = self.k;
         let tau = t - self.mid;
         Radial {
-            z: k0 + tau * (k1 + tau * (k2 + tau * k3)),
+            z: self.value(t),
             slope: k1 + tau * (2.0 * k2 + 3.0 * tau * k3),
             curvature_term: 2.0 * k2 + 6.0 * tau * k3,
         }
+    }
+
+    /// Its value at t (Horner's form, as [`Self::radial`] gives it).
+    pub fn value(&self, t: f64) -> f64 {
+        let [k0, k1, k2, k3] = self.k;
+        let tau = t - self.mid;
+        k0 + tau * (k1 + tau * (k2 + tau * k3))
     }
 
     /// Its lowest and highest values over `[lo, hi]`: at the ends and where its slope
     /// `k₁ + 2k₂τ + 3k₃τ²` vanishes inside.
     pub fn range_on(&self, lo: f64, hi: f64) -> [f64; 2] {
         let [_, k1, k2, k3] = self.k;
-        let z = |t: f64| self.radial(t).z;
-        let (mut low, mut high) = (z(lo).min(z(hi)), z(lo).max(z(hi)));
+        let (a, b) = (self.value(lo), self.value(hi));
+        let (mut low, mut high) = (a.min(b), a.max(b));
         for tau in quadratic_roots(k1, 2.0 * k2, 3.0 * k3) {
             let t = self.mid + tau;
             if t > lo && t < hi {
-                low = low.min(z(t));
-                high = high.max(z(t));
+                let z = self.value(t);
+                (low, high) = (low.min(z), high.max(z));
             }
         }
         [low, high]

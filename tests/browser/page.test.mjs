@@ -135,8 +135,9 @@ for (const backend of ['WebGPU', 'WebGL2']) {
       // The first edit's 3.6 M points may be planned before the state is looked at (two
       // workers plan them in about 2 s): either state will do, the second edit is the test.
       await setField(page, 'strategy.feed_mm_per_rev', '0.001', ['planning', 'done']);
-      await setField(page, 'strategy.sampling.points_per_rev', '2000', ['planning']);
-      // 5000 revolutions × 2000 points = 10 M points: progress moves while the page answers.
+      await setField(page, 'strategy.sampling.points_per_rev', '5000', ['planning']);
+      // 5000 revolutions × 5000 points = 25 M points: progress moves while the page answers
+      // (10 M points were planned on two workers in under 2 s, before the click could land).
       await page.waitForFunction(() => document.querySelector('#progress').value > 0, null, { timeout: 60_000 });
       const first = await page.evaluate(() => document.querySelector('#progress').value);
       const frames = await page.evaluate(() => new Promise((resolve) => {
@@ -147,7 +148,7 @@ for (const backend of ['WebGPU', 'WebGL2']) {
       assert.equal(frames, 10);
       await page.waitForFunction((v) => document.querySelector('#progress').value > v, first, { timeout: 60_000 });
       assert.equal(await page.evaluate(() => document.body.dataset.state), 'planning');
-      assert.equal(await page.evaluate(() => document.querySelector('#progress').max), 10_000_001);
+      assert.equal(await page.evaluate(() => document.querySelector('#progress').max), 25_000_001);
       // Cancel takes the focus from the field just typed in: its `change` must not re-plan.
       await page.click('#cancel');
       await waitForState(page, ['cancelled']);

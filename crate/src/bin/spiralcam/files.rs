@@ -119,6 +119,11 @@ pub fn check_targets(targets: &[Target], inputs: &[PathBuf]) -> Result<(), Failu
     Ok(())
 }
 
+/// Bytes an output file gathers before it writes them: a planned batch's text (about 800 KB)
+/// is larger and goes to the file in one write without a copy through the buffer (a 1 MiB
+/// buffer copied all 1.4 GB of a 28.4 M-point program once more: 0.1 s of its 2.9 s).
+const WRITE_BUFFER: usize = 1 << 16;
+
 /// A file being written: under a temporary name until [`OutputFile::commit`].
 pub struct OutputFile {
     target: PathBuf,
@@ -137,14 +142,14 @@ impl OutputFile {
             return Ok(Self {
                 target: target.to_path_buf(),
                 temp: None,
-                writer: BufWriter::with_capacity(1 << 20, file),
+                writer: BufWriter::with_capacity(WRITE_BUFFER, file),
             });
         }
         let (file, temp) = create_temp(target).map_err(fail)?;
         Ok(Self {
             target: target.to_path_buf(),
             temp: Some(temp),
-            writer: BufWriter::with_capacity(1 << 20, file),
+            writer: BufWriter::with_capacity(WRITE_BUFFER, file),
         })
     }
 

@@ -603,6 +603,8 @@ impl Surface for Scattered {
         cache::along(self.id, &self.index, (line, self.n), range, &make, &mut got);
         let switches = got.pieces.iter().skip(1).map(|p| p.start);
         let inside = |t: &f64| *t > t0 && *t < t1;
+        // Room for all at once: a filtered iterator would grow `out` step by step.
+        out.reserve(got.pieces.len() + got.kinks.len());
         out.extend(merged(switches, &got.kinks).filter(inside));
         let section = l1.then(|| LineSection::new(got.stretches));
         cache::remember_line(self.id, (line, t1), got.pieces, section, got.kinks);

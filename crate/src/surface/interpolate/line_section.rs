@@ -204,7 +204,12 @@ impl LineSection {
 
     /// [`Self::range_over`] each interval between consecutive `ts` (ascending).
     pub fn ranges_over(&self, ts: &[f64]) -> Option<Vec<[f64; 2]>> {
-        ts.windows(2).map(|w| self.range_over(w[0], w[1])).collect()
+        // Sized once: an `Option` collect cannot know its length.
+        let mut ranges = Vec::with_capacity(ts.len().saturating_sub(1));
+        for w in ts.windows(2) {
+            ranges.push(self.range_over(w[0], w[1])?);
+        }
+        Some(ranges)
     }
 
     /// The last stretch starting at or before t, searched from the one read last: steps that

@@ -34,6 +34,9 @@ use crate::surface::Line;
 /// The most neighbours any method uses.
 pub const MAX_NEIGHBOURS: usize = 16;
 
+/// Room for the candidates of a chunk, made at once.
+const CANDIDATES: usize = 4 * MAX_NEIGHBOURS;
+
 /// Events handled per chunk before the set is simply re-queried (a guard, never reached in
 /// practice: a chunk of one spacing sees a handful of switches).
 const MAX_EVENTS: usize = 4096;
@@ -59,10 +62,15 @@ impl PartialEq for NeighbourSet {
 }
 
 impl NeighbourSet {
-    fn from_unsorted(items: &[u32]) -> Self {
+    /// The set of the first [`MAX_NEIGHBOURS`] of `items`, in any order (without a vector in
+    /// between: a walk makes one at every switch).
+    fn from_unsorted(items: impl IntoIterator<Item = u32>) -> Self {
         let mut idx = [0; MAX_NEIGHBOURS];
-        let len = items.len().min(MAX_NEIGHBOURS);
-        idx[..len].copy_from_slice(&items[..len]);
+        let mut len = 0;
+        for (slot, item) in idx.iter_mut().zip(items) {
+            *slot = item;
+            len += 1;
+        }
         idx[..len].sort_unstable();
         Self { idx, len }
     }
@@ -176,8 +184,7 @@ impl NeighbourIndex {
                 cand = self.within_keys(q, nth * (1.0 + 1e-12) + f64::MIN_POSITIVE);
             }
         }
-        let items: Vec<u32> = cand.iter().take(n).map(|c| c.1).collect();
-        NeighbourSet::from_unsorted(&items)
+        NeighbourSet::from_unsorted(cand.iter().take(n).map(|c| c.1))
     }
 
     /// Keys of all points within squared distance `r2` of `q`, ascending.
@@ -264,8 +271,7 @@ impl NeighbourIndex {
             let Some(tau) = kinetic.next_swap() else {
                 return;
             };
-            let members: Vec<u32> = kinetic.members().collect();
-            *set = NeighbourSet::from_unsorted(&members);
+            *set = NeighbourSet::from_unsorted(kinetic.members());
             record(out, tm + tau, *set);
         }
     }
@@ -277,8 +283,7 @@ impl NeighbourIndex {
             .map(|c| (self.key(q, c.index), c.index))
             .collect();
         sort_keys(&mut keys);
-        let items: Vec<u32> = keys.iter().take(n).map(|k| k.1).collect();
-        NeighbourSet::from_unsorted(&items)
+        NeighbourSet::from_unsorted(keys.iter().take(n).map(|k| k.1))
     }
 
     /// The points that can be members anywhere on `[ta, tb]`, the current members marked.
@@ -296,15 +301,14 @@ impl NeighbourIndex {
             .fold(0.0f64, |a, &i| a.max(self.key(start, i)));
         let reach = dn2.sqrt() + 1.5 * (tb - ta);
         let r2 = (reach * reach + self.tie_span) * (1.0 + 1e-9);
-        let mut cand: Vec<Candidate> = self
-            .tree
+        // Visited into one vector (a chunk of one spacing has a few dozen candidates) rather
+        // than collected from the tree's own, which grows one by one.
+        let mut cand = Vec::with_capacity(CANDIDATES);
+        self.tree
             .query(&m)
             .within::<SquaredEuclidean<f64>>(r2)
             .unsorted()
-            .execute()
-            .into_iter()
-            .map(|r| self.candidate(r.item, m, line, set))
-            .collect();
+            .visit(|r| cand.push(self.candidate(r.item, m, line, set)));
         // Members always take part, even if rounding left one out of the radius.
         for &i in set.indices() {
             if !cand.iter().any(|c| c.index == i) {
@@ -381,8 +385,7 @@ mod tests {
             .map(|i| (ix.key(q, i), i))
             .collect();
         sort_keys(&mut all);
-        let items: Vec<u32> = all.iter().take(n).map(|c| c.1).collect();
-        NeighbourSet::from_unsorted(&items)
+        NeighbourSet::from_unsorted(all.iter().take(n).map(|c| c.1))
     }
 
     fn grid(h: f64, k: i32) -> Vec<[f64; 2]> {

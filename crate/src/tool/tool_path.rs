@@ -17,7 +17,7 @@ use super::reach::{self, Reach};
 use super::{Concavity, NoseCompensator};
 use crate::field::FieldError;
 use crate::job::{Compensation, Job, Sampling, StrategySpec};
-use crate::parallel::pipeline;
+use crate::parallel::{fill_each, pipeline};
 use crate::path::{PathError, PathPoint, Spiral, SpiralPoint};
 use crate::progress::{PROGRESS_EVERY, Progress, ProgressFn, Stage, ignore};
 use crate::surface::{Surface, UndefinedError};
@@ -361,8 +361,9 @@ impl ToolPath {
     /// [`Self::probe`], and the time by `clock` that the runs' second and third points took:
     /// each is started from the contact before it, as the walk computes every point but a
     /// run's first ([`WARM_RUN`]), so this is the time of the points of a walk; the runs'
-    /// first points, each searched without a start, are computed before the clock starts
-    /// (a search of the whole arc costs more than a step from the last contact). Where the
+    /// first points, each searched without a start, are computed before the clock starts, on
+    /// every core (a search of the whole arc costs more than a step from the last contact;
+    /// they also meet every cache's cold start, so one pass is timed). Where the
     /// walk goes line by line (scattered data on a constant-angle spiral), each timed point's
     /// line is first walked by the point one turn outward, untimed, as in the walk.
     pub fn probe_timed(
@@ -392,12 +393,14 @@ impl ToolPath {
             })
             .collect();
         let index = |a: &SpiralPoint| (total * (1.0 - a.rho / r0)).max(0.0) as u64;
-        let mut firsts = Vec::with_capacity(runs.len());
-        for [a, _, _] in &runs {
+        // The runs' first points, each a cold search of the whole arc, untimed: on every core.
+        let mut firsts = vec![(PathPoint::default(), None); runs.len()];
+        fill_each(&mut firsts, |k| {
+            let a = runs[k][0];
             let mut warm = None;
-            let p = self.path_point(index(a), *a, &mut warm)?.0;
-            firsts.push((p, warm));
-        }
+            let p = self.path_point(index(&a), a, &mut warm)?.0;
+            Ok::<_, UndefinedError>((p, warm))
+        })?;
         let line_by_line = clock.is_some() && self.walks_line_by_line();
         let mut elapsed = 0.0;
         let mut probes = Vec::with_capacity(runs.len());

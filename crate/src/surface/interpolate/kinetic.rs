@@ -12,8 +12,8 @@
 //! (a maximum of linear functions) and `k_q` linear, so `E − k_q` is convex and lies below its
 //! chord: where q's key is above E at both the current τ and the stretch's end, it is above
 //! every member's key all along, and q overtakes none. Such an outsider's search against the
-//! members, and its check against a member just in, are skipped ([`Ceiling`]) when the gap at
-//! both ends exceeds 10⁻⁹ of the keys' terms, over 10⁵ times the rounding that [`crossing`]
+//! members, and its check against a member just in, are skipped (`Ceiling`) when the gap at
+//! both ends exceeds 10⁻⁹ of the keys' terms, over 10⁵ times the rounding that `crossing`
 //! allows for, so the crossings found are the same to the bit: only searches that would find
 //! none are left out (4 % of the scattered example's CPU).
 

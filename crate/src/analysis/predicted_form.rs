@@ -1031,6 +1031,7 @@ impl MapAcc {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_random::uniform;
 
     /// The envelope by brute force: the lowest arc over u.
     fn brute(arcs: &[(f64, f64)], u: f64, r: f64, w: f64) -> Option<f64> {
@@ -1038,14 +1039,6 @@ mod tests {
             .filter(|(a, _)| (u - a).abs() <= w)
             .map(|&(a, c)| c - (r * r - (u - a) * (u - a)).sqrt())
             .min_by(f64::total_cmp)
-    }
-
-    /// Deterministic pseudo-random numbers in [0, 1).
-    fn lcg(state: &mut u64) -> f64 {
-        *state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (*state >> 11) as f64 / (1u64 << 53) as f64
     }
 
     #[test]
@@ -1059,8 +1052,8 @@ mod tests {
             let mut a = 3.0;
             let spread = [1e-4, 0.02, 0.3][case % 3];
             for _ in 0..40 {
-                arcs.push((a, spread * (lcg(&mut state) - 0.5)));
-                a -= [0.0, 0.01, 0.05, 0.9][(lcg(&mut state) * 4.0) as usize];
+                arcs.push((a, spread * (uniform(&mut state) - 0.5)));
+                a -= [0.0, 0.01, 0.05, 0.9][(uniform(&mut state) * 4.0) as usize];
             }
             let mut stack = VecDeque::new();
             let edge = Edge { r, measured: None };

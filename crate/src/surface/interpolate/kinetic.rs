@@ -204,14 +204,7 @@ impl Kinetic {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// A xorshift generator's next value in [0, 1).
-    fn next(state: &mut u64) -> f64 {
-        *state ^= *state << 13;
-        *state ^= *state >> 7;
-        *state ^= *state << 17;
-        (*state >> 11) as f64 / (1u64 << 53) as f64
-    }
+    use crate::test_random::uniform;
 
     #[test]
     fn an_outsider_that_clears_the_ceiling_crosses_no_member() {
@@ -223,18 +216,18 @@ mod tests {
         let (mut cleared, mut crossing_some) = (0, 0);
         for _ in 0..2000 {
             // The members the nearest 8 at the stretch's midpoint, as a walk's are.
-            let mut r2: Vec<f64> = (0..40).map(|_| next(&mut state)).collect();
+            let mut r2: Vec<f64> = (0..40).map(|_| uniform(&mut state)).collect();
             r2.sort_by(f64::total_cmp);
             let cand: Vec<Candidate> = (0..40)
                 .map(|i| Candidate {
                     index: i as u32,
                     r2: r2[i],
-                    along: 0.5 * (2.0 * next(&mut state) - 1.0),
+                    along: 0.5 * (2.0 * uniform(&mut state) - 1.0),
                     member: i < 8,
                 })
                 .collect();
-            let tau = next(&mut state) - 0.5;
-            let k = Kinetic::new(cand, 1e-12, tau, tau + next(&mut state));
+            let tau = uniform(&mut state) - 0.5;
+            let k = Kinetic::new(cand, 1e-12, tau, tau + uniform(&mut state));
             for q in k.cand.iter().filter(|c| !c.member) {
                 let crosses = k
                     .members

@@ -86,23 +86,24 @@ impl Planner {
         let (written, computed) = program_factors(self.job());
         let points = (path_points as f64 * written).round() as u64;
         let passes = if dynamics::wanted(self.job()) { 2 } else { 1 };
-        let (probes, warm) = match clock {
+        // With a clock, the probes' warm points timed: (clock, their seconds).
+        let (probes, timed) = match clock {
             None => (self.probe(PROBES)?, None),
             Some(now) => {
                 let (probes, warm) = self.probe_timed(PROBES, now)?;
-                (probes, Some(warm))
+                (probes, Some((now, warm)))
             }
         };
         check_heights(&probes)?;
         let w = self.weights(&probes)?;
-        let seconds = match (clock, warm) {
-            (Some(now), Some(warm)) => {
+        let seconds = match timed {
+            None => None,
+            Some((now, warm)) => {
                 let per_point = |t: f64| t.max(0.0) / (2 * PROBES) as f64;
                 let compensate = per_point(warm) * passes as f64 / workers() as f64;
                 let n = path_points as f64;
                 Some(n * computed * compensate + n * written * self.block_seconds(&probes, now)?)
             }
-            _ => None,
         };
         let split = self.job().strategy.split.is_some();
         let n = path_points as f64;

@@ -38,17 +38,3 @@ pub mod raster;
 pub mod report;
 pub mod surface;
 pub mod tool;
-
-/// Deterministic pseudo-random numbers for tests: one generator, so that test data are drawn
-/// alike everywhere.
-#[cfg(test)]
-pub(crate) mod test_random {
-    /// The next number in [0, 1) of the linear congruential sequence in `state` (Knuth's MMIX
-    /// constants, the top 53 bits).
-    pub fn uniform(state: &mut u64) -> f64 {
-        *state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (*state >> 11) as f64 / (1u64 << 53) as f64
-    }
-}

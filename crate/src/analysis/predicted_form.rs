@@ -1031,7 +1031,7 @@ impl MapAcc {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_random::uniform;
+    use crate::field::test_random::uniform;
 
     /// The envelope by brute force: the lowest arc over u.
     fn brute(arcs: &[(f64, f64)], u: f64, r: f64, w: f64) -> Option<f64> {

@@ -204,7 +204,7 @@ impl Kinetic {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_random::uniform;
+    use crate::field::test_random::uniform;
 
     #[test]
     fn an_outsider_that_clears_the_ceiling_crosses_no_member() {

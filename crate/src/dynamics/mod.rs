@@ -33,10 +33,10 @@ use crate::dynamics::axis_checks::{AxisReport, AxisSample, check_axes};
 use crate::dynamics::fts_grid::{FtsGrid, FtsGridReport, ServoPath};
 use crate::dynamics::path_signal::{PathSignal, UniformSignal, extremes, hz, peak_to_valley};
 use crate::dynamics::spectrum::{
-    BandFrequency, Spectrum, amplitude_spectrum, highest_significant_cycles_per_rev,
-    instantaneous_frequency,
+    BandFrequency, Spectrum, amplitude_spectrum_on, highest_significant_cycles_per_rev,
+    instantaneous_frequency_on,
 };
-use crate::dynamics::split::{Limit, SplitError, SplitLimits, Verdict, split};
+use crate::dynamics::split::{Limit, SplitError, SplitLimits, Verdict, split_on};
 use crate::job::Job;
 use crate::job::MachineSpec;
 use crate::job::SplitSpec;
@@ -69,16 +69,17 @@ impl From<crate::field::FieldError> for DynamicsError {
 pub const SPECTRUM_BINS: usize = 2048;
 
 /// The most points the dynamics analyse (about 2.0 GB in memory).
-pub const MAX_POINTS: u64 = 12_000_000;
+pub const MAX_POINTS: u64 = 14_000_000;
 
-/// The peak memory of the dynamics per path point, bytes, with some room: 137–148 MiB
-/// (144–155 MB) of peak resident set for 1 000 001 points of the sine grid
-/// (`sinusoid-grid-fts.json` at 1 000 points a revolution) with each kind of split, 107 MiB
-/// with machine limits alone (`python3 tests/bench/peak_memory.py`), 499 MiB for 4 000 001
-/// points (automatic and low-pass splits). The peak is the split's checks: a channel's
-/// spectrum (48 bytes a sample of a transform at most 1/8 longer than the path: buffer,
-/// scratch and plan) beside the path's columns, its grid and the channels.
-pub const BYTES_PER_POINT: u64 = 170;
+/// The peak memory of the dynamics per path point, bytes, with some room: 118–119 MiB
+/// (124–125 MB) of peak resident set for 1 000 001 points of the sine grid
+/// (`sinusoid-grid-fts.json` at 1 000 points a revolution) with each kind of split, 96 MiB
+/// with machine limits alone (`python3 tests/bench/peak_memory.py`), 462 MB for 4 000 001
+/// points and 1.32 GB for 11 990 001 (automatic split: 110 bytes a point). The peak is the
+/// split's checks: a channel's spectrum (a real-input transform at most 1/8 longer than the
+/// path, 16 bytes a sample with its output, and its plan) beside the path's columns (32 bytes a
+/// point), its grid (16) and the channels at the points and on the grid (32).
+pub const BYTES_PER_POINT: u64 = 140;
 
 /// Radius bands of the instantaneous frequency.
 pub const FREQUENCY_BANDS: usize = 32;
@@ -417,13 +418,20 @@ impl Dynamics {
         let machine = &job.machine;
         let rpm = machine.spindle_rpm;
         let signal = &path.signal;
-        let spectrum = amplitude_spectrum(signal, rpm, SPECTRUM_BINS);
-        let instantaneous_frequency = instantaneous_frequency(signal, rpm, FREQUENCY_BANDS);
+        // The path on its uniform grid, resampled once for every analysis below.
+        let uniform = signal.uniform();
+        let grid = uniform.as_ref().ok();
+        let spectrum = grid.map_or_else(Spectrum::default, |g| {
+            amplitude_spectrum_on(g, rpm, SPECTRUM_BINS)
+        });
+        let instantaneous_frequency = grid.map_or_else(Vec::new, |g| {
+            instantaneous_frequency_on(g, rpm, FREQUENCY_BANDS)
+        });
         let (split_report, z_slide, w_fts) = match &job.strategy.split {
             None => (None, None, None),
             Some(spec) => {
                 let limits = split_limits(machine);
-                let s = split(signal, spec, rpm, limits.as_ref())?;
+                let s = split_on(signal, &uniform, spec, rpm, limits.as_ref())?;
                 let report = SplitReport {
                     spec: spec.clone(),
                     cutoff_hz: s.cutoff_hz,
@@ -439,22 +447,21 @@ impl Dynamics {
             AxisSample::new(path.theta[i], signal.rho_mm[i], signal.z_mm[i], slide)
         });
         let axes = check_axes(samples, machine);
-        let grid = signal.uniform().ok();
         // The slide's Z on the grid: the path's, or its share of a split path resampled alike.
         let slide_grid = z_slide.as_ref().map(|z| signal.uniform_values(z));
-        let slide_z = match (&slide_grid, &grid) {
+        let slide_z = match (&slide_grid, grid) {
             (Some(z), Some(_)) => Some(&z[..]),
             (None, Some(g)) => Some(&g.z_mm[..]),
             (_, None) => None,
         };
         let bandwidth = SlideBandwidths {
             x: BandwidthCheck::of(
-                grid.as_ref().map(|g| (g, &g.rho_mm[..])),
+                grid.map(|g| (g, &g.rho_mm[..])),
                 rpm,
                 machine.x_slide.map(|s| s.bandwidth_hz),
             ),
             z: BandwidthCheck::of(
-                grid.as_ref().zip(slide_z),
+                grid.zip(slide_z),
                 rpm,
                 machine.z_slide.map(|s| s.bandwidth_hz),
             ),

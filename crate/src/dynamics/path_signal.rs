@@ -427,20 +427,23 @@ impl UniformSignal {
     /// `values` on the grid, linearly interpolated at the path's angles (the last grid interval
     /// extended by at most one step past the grid's end).
     pub fn at_path(&self, values: &[f64], angle_rad: &[f64]) -> Vec<f64> {
-        let n = values.len();
-        if n < 2 {
-            return vec![values.first().copied().unwrap_or(0.0); angle_rad.len()];
-        }
-        let step = self.step_rad();
         angle_rad
             .iter()
-            .map(|a| {
-                let x = a / step;
-                let j = (x.floor().max(0.0) as usize).min(n - 2);
-                let t = x - j as f64;
-                values[j] + t * (values[j + 1] - values[j])
-            })
+            .map(|&a| self.interpolate(values, a))
             .collect()
+    }
+
+    /// `values` on the grid, linearly interpolated at the angle `angle_rad` as [`Self::at_path`]
+    /// does (0 for no values).
+    pub fn interpolate(&self, values: &[f64], angle_rad: f64) -> f64 {
+        let n = values.len();
+        if n < 2 {
+            return values.first().copied().unwrap_or(0.0);
+        }
+        let x = angle_rad / self.step_rad();
+        let j = (x.floor().max(0.0) as usize).min(n - 2);
+        let t = x - j as f64;
+        values[j] + t * (values[j + 1] - values[j])
     }
 }
 

@@ -31,8 +31,10 @@
 //! below a gain of ½). Bin j of the padded record lies at `j·M/L` cycles per revolution (M samples
 //! per revolution), `j·M/L·n/60` Hz: frequencies scale with the spindle speed, amplitudes do not.
 //!
-//! **Instantaneous frequency.** The analytic signal `r + i·H{r}` by the FFT (positive
-//! frequencies doubled, negative ones removed). A record cut off at its ends has a Hilbert
+//! **Instantaneous frequency.** The analytic signal `r + i·H{r}`, the Hilbert transform H by
+//! the FFT (the spectrum turned by −90° at positive frequencies and +90° at negative ones, its 0
+//! and Nyquist bins removed: the analytic signal's spectrum is then the positive frequencies
+//! doubled, the negative ones removed). A record cut off at its ends has a Hilbert
 //! transform that errs like 1/d at d periods from the cut, over the whole record (1e-3 in the
 //! middle of 30 revolutions of a tone with a mirror-image extension); so the first and last
 //! revolution are rolled off by a raised cosine and the record is padded with at least
@@ -50,10 +52,16 @@
 //! so weighted order statistics ignore it. A sine grid cut along a circle of radius ρ has the
 //! instantaneous frequency `(2πρ/λ)·|sin θ|` cycles/rev: its median over a revolution is
 //! `sin(π/4)·2πρ/λ`, its 95th percentile `sin(0.95·π/2)·2πρ/λ`.
+//!
+//! **Transforms.** Every record here is real, so every transform is a real-input one (`realfft`
+//! over `rustfft`: a record of even length L goes through a complex transform of L/2 and one
+//! pass of twiddles), which keeps bins 0 … L/2 only, the others being their conjugates: half the
+//! work of a complex transform, and 16 bytes a sample of the record with its output against 48
+//! for a complex transform in place with its scratch (the dynamics' peak memory).
 
 use crate::dynamics::path_signal::{PathSignal, UniformSignal, hz, residual_gain};
+use realfft::{ComplexToReal, FftError, RealFftPlanner};
 use rustfft::num_complex::Complex;
-use rustfft::{Fft, FftPlanner};
 use serde::Serialize;
 use std::f64::consts::{PI, TAU};
 
@@ -117,28 +125,51 @@ pub struct BandFrequency {
 /// bins 0 … len/2 (bin j at j/len cycles per sample), in the unit of `x`. A longer `len` samples
 /// the same spectrum more finely (every N/len of the record's bins). `x` is let go before the
 /// transform.
-pub fn hann_amplitudes(x: Vec<f64>, len: usize) -> Vec<f64> {
+pub fn hann_amplitudes(mut x: Vec<f64>, len: usize) -> Vec<f64> {
     let n = x.len();
     if n < 2 {
         return Vec::new();
     }
-    let len = len.max(n);
     // The window's sum (its gain) added up as it is applied: one cosine a sample.
     let mut gain = 0.0;
-    let mut buf: Vec<Complex<f64>> = Vec::with_capacity(len);
-    for (j, v) in x.iter().enumerate() {
+    for (j, v) in x.iter_mut().enumerate() {
         let w = 0.5 - 0.5 * (TAU * j as f64 / n as f64).cos();
         gain += w;
-        buf.push(Complex::new(v * w, 0.0));
+        *v *= w;
     }
-    buf.resize(len, Complex::new(0.0, 0.0));
-    drop(x);
-    FftPlanner::new().plan_fft_forward(len).process(&mut buf);
-    buf[..=len / 2]
+    real_spectrum(x, len.max(n))
         .iter()
         .enumerate()
         .map(|(j, c)| c.norm() * if j == 0 { 1.0 } else { 2.0 } / gain)
         .collect()
+}
+
+/// The spectrum of the real record `x` padded with zeros to `len ≥ x.len()` samples, bins
+/// 0 … len/2 (the others are their conjugates), by a real-input transform (`realfft`: for an
+/// even length, a complex transform of half the length; 16 bytes a sample of the record with
+/// its output, against 48 for a complex transform in place with its scratch). `x` is its
+/// scratch and is let go.
+pub(crate) fn real_spectrum(mut x: Vec<f64>, len: usize) -> Vec<Complex<f64>> {
+    x.resize(len, 0.0);
+    let forward = RealFftPlanner::<f64>::new().plan_fft_forward(len);
+    let mut out = forward.make_output_vec();
+    // Buffers sized by the plan itself: the transform cannot refuse them.
+    let done = forward.process(&mut x, &mut out);
+    debug_assert!(done.is_ok());
+    out
+}
+
+/// The inverse real-input transform, unscaled, of the spectrum `bins` (0 … len/2) by `inverse`
+/// (a plan of the record's length), `bins` its scratch: the real record whose spectrum it is.
+/// The imaginary parts of bins 0 and len/2 (that of a real record is 0) are ignored.
+pub(crate) fn real_inverse(
+    inverse: &dyn ComplexToReal<f64>,
+    mut bins: Vec<Complex<f64>>,
+) -> Vec<f64> {
+    let mut out = inverse.make_output_vec();
+    let done = inverse.process(&mut bins, &mut out);
+    debug_assert!(matches!(done, Ok(()) | Err(FftError::InputValues(..))));
+    out
 }
 
 /// The non-symmetric residual of `values` on `grid`.
@@ -216,12 +247,19 @@ fn refine(below: f64, at: f64, above: f64, j: usize, q: f64) -> (f64, f64) {
 /// most `max_bins` bins for display (each group keeps its largest bin); empty when the path
 /// cannot be analysed ([`PathSignal::check`]) or the speed is not a positive number.
 pub fn amplitude_spectrum(signal: &PathSignal, spindle_rpm: f64, max_bins: usize) -> Spectrum {
-    let Some(grid) = analysable(signal, spindle_rpm) else {
+    signal.uniform().map_or_else(
+        |_| Spectrum::default(),
+        |grid| amplitude_spectrum_on(&grid, spindle_rpm, max_bins),
+    )
+}
+
+/// [`amplitude_spectrum`] of a signal's uniform grid ([`PathSignal::uniform`]).
+pub fn amplitude_spectrum_on(grid: &UniformSignal, spindle_rpm: f64, max_bins: usize) -> Spectrum {
+    if !positive_speed(spindle_rpm) {
         return Spectrum::default();
-    };
+    }
     let (samples, per_rev) = (grid.len(), grid.samples_per_rev);
-    let r = residual(&grid, &grid.z_mm);
-    drop(grid);
+    let r = residual(grid, &grid.z_mm);
     let len = fast_length(samples, false);
     let a = hann_amplitudes(r, len);
     let cpr_per_bin = per_rev as f64 / len as f64;
@@ -293,18 +331,11 @@ pub fn fast_length(n: usize, even: bool) -> usize {
     }
 }
 
-/// The inverse FFT (unscaled) of `buf` in place by `forward`, the forward plan of its length:
-/// `IFFT(x) = conj(FFT(conj x))`, exact in floating point (conjugation only flips signs), so
-/// one plan's twiddles (16 bytes a sample of the transform) serve both directions.
-pub(crate) fn inverse_by_forward(forward: &dyn Fft<f64>, buf: &mut [Complex<f64>]) {
-    buf.iter_mut().for_each(|c| *c = c.conj());
-    forward.process(buf);
-    buf.iter_mut().for_each(|c| *c = c.conj());
-}
-
-/// The analytic signal of `x` by the FFT, the first and last `taper` samples rolled off by a
-/// raised cosine and the record padded with [`PAD_TAPERS`] times as many zeros or more (with
-/// as many as it has samples if `taper` is 0), to a [`fast_length`] (module docs); frees `x` first.
+/// The analytic signal of `x`, `x + i·H{x}` with H the Hilbert transform by the FFT (the
+/// spectrum of `x` turned by −90° at positive frequencies, +90° at negative ones, its 0 and
+/// Nyquist bins removed; by real-input transforms), the first and last `taper` samples rolled off
+/// by a raised cosine and the record padded with [`PAD_TAPERS`] times as many zeros or more
+/// (with as many as it has samples if `taper` is 0), to a [`fast_length`] (module docs).
 pub fn analytic_signal(x: Vec<f64>, taper: usize) -> Vec<Complex<f64>> {
     let n = x.len();
     let taper = taper.min(n / 2);
@@ -321,26 +352,29 @@ pub fn analytic_signal(x: Vec<f64>, taper: usize) -> Vec<Complex<f64>> {
     } else {
         fast_length(2 * n, true)
     };
+    let mut rolled = x;
+    rolled
+        .iter_mut()
+        .enumerate()
+        .for_each(|(j, v)| *v *= roll(j));
+    let mut record = Vec::with_capacity(len);
+    record.extend_from_slice(&rolled);
+    let mut bins = real_spectrum(record, len);
     let half = len / 2;
-    let mut buf: Vec<Complex<f64>> = (0..len)
-        .map(|j| Complex::new(if j < n { x[j] * roll(j) } else { 0.0 }, 0.0))
-        .collect();
-    drop(x);
-    let forward = FftPlanner::new().plan_fft_forward(len);
-    forward.process(&mut buf);
-    for (j, c) in buf.iter_mut().enumerate() {
-        let gain = match j {
-            0 => 1.0,
-            j if j == half => 1.0,
-            j if j < half => 2.0,
-            _ => 0.0,
+    for (j, c) in bins.iter_mut().enumerate() {
+        *c = if j == 0 || j == half {
+            Complex::new(0.0, 0.0)
+        } else {
+            Complex::new(c.im, -c.re) / len as f64
         };
-        *c *= gain / len as f64;
     }
-    inverse_by_forward(&*forward, &mut buf);
-    buf.truncate(n);
-    buf.shrink_to_fit();
-    buf
+    let inverse = RealFftPlanner::<f64>::new().plan_fft_inverse(len);
+    let hilbert = real_inverse(&*inverse, bins);
+    rolled
+        .iter()
+        .zip(&hilbert)
+        .map(|(&re, &im)| Complex::new(re, im))
+        .collect()
 }
 
 /// The instantaneous frequency of the path's non-symmetric part at `spindle_rpm` in `bands`
@@ -351,10 +385,19 @@ pub fn instantaneous_frequency(
     spindle_rpm: f64,
     bands: usize,
 ) -> Vec<BandFrequency> {
-    let Some(mut grid) = analysable(signal, spindle_rpm) else {
-        return Vec::new();
-    };
-    if bands == 0 {
+    signal.uniform().map_or_else(
+        |_| Vec::new(),
+        |grid| instantaneous_frequency_on(&grid, spindle_rpm, bands),
+    )
+}
+
+/// [`instantaneous_frequency`] of a signal's uniform grid ([`PathSignal::uniform`]).
+pub fn instantaneous_frequency_on(
+    grid: &UniformSignal,
+    spindle_rpm: f64,
+    bands: usize,
+) -> Vec<BandFrequency> {
+    if !positive_speed(spindle_rpm) || bands == 0 {
         return Vec::new();
     }
     let skip = if grid.len() >= 3 * grid.samples_per_rev {
@@ -362,10 +405,7 @@ pub fn instantaneous_frequency(
     } else {
         0
     };
-    let r = residual(&grid, &grid.z_mm);
-    // Only the radii are needed from here on: the heights are let go before the transforms.
-    grid.z_mm = Vec::new();
-    let a = analytic_signal(r, skip);
+    let a = analytic_signal(residual(grid, &grid.z_mm), skip);
     let rho_max = grid.rho_mm.iter().copied().fold(0.0, f64::max);
     let width = rho_max / bands as f64;
     let band_of = |rho: f64| {
@@ -422,12 +462,9 @@ fn weighted_quantile(sorted: &[(f64, f64)], q: f64) -> f64 {
     sorted.last().map_or(0.0, |p| p.0)
 }
 
-/// The uniform grid of a signal that can be analysed at a positive finite speed.
-fn analysable(signal: &PathSignal, spindle_rpm: f64) -> Option<UniformSignal> {
-    if !(spindle_rpm.is_finite() && spindle_rpm > 0.0) {
-        return None;
-    }
-    signal.uniform().ok()
+/// Whether the signal can be analysed at `spindle_rpm`: a positive finite speed.
+fn positive_speed(spindle_rpm: f64) -> bool {
+    spindle_rpm.is_finite() && spindle_rpm > 0.0
 }
 
 #[cfg(test)]

@@ -52,12 +52,12 @@ use crate::dynamics::path_signal::{
     PathSignal, SignalError, UniformSignal, hz, omega, peak_to_valley,
 };
 use crate::dynamics::spectrum::{
-    fast_length, highest_significant_cycles_per_rev, inverse_by_forward,
+    fast_length, highest_significant_cycles_per_rev, real_inverse, real_spectrum,
 };
 use crate::field::{FieldError, positive};
 use crate::job::SplitSpec;
+use realfft::{ComplexToReal, RealFftPlanner};
 use rustfft::num_complex::Complex;
-use rustfft::{Fft, FftPlanner};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 use thiserror::Error;
@@ -222,12 +222,14 @@ pub fn response(k: f64, k_c: f64) -> f64 {
     1.0 / (1.0 + (k / k_c).abs().powi(2 * BUTTERWORTH_ORDER))
 }
 
-/// The zero-phase low-pass of one grid signal at any cutoff: the FFT of the extended signal is
-/// taken once.
+/// The zero-phase low-pass of one grid signal at any cutoff: the (real-input) FFT of the
+/// extended signal is taken once, and its inverse planned once.
 struct LowPass {
+    /// Bins 0 … len/2 of the extended signal's spectrum.
     spectrum: Vec<Complex<f64>>,
-    /// The forward plan, which also serves the inverse ([`inverse_by_forward`]).
-    forward: Arc<dyn Fft<f64>>,
+    inverse: Arc<dyn ComplexToReal<f64>>,
+    /// Length of the extended signal.
+    len: usize,
     samples: usize,
     samples_per_rev: usize,
 }
@@ -237,14 +239,10 @@ impl LowPass {
         let head = EXTENSION_REVS * grid.samples_per_rev;
         let len = fast_length(grid.len() + 2 * head, false);
         let extended = extend(grid, head, len - grid.len() - head);
-        let mut spectrum: Vec<Complex<f64>> =
-            extended.iter().map(|&v| Complex::new(v, 0.0)).collect();
-        drop(extended);
-        let forward = FftPlanner::new().plan_fft_forward(spectrum.len());
-        forward.process(&mut spectrum);
         Self {
-            spectrum,
-            forward,
+            spectrum: real_spectrum(extended, len),
+            inverse: RealFftPlanner::new().plan_fft_inverse(len),
+            len,
             samples: grid.len(),
             samples_per_rev: grid.samples_per_rev,
         }
@@ -252,20 +250,13 @@ impl LowPass {
 
     /// The filtered grid signal at cutoff `k_c` cycles per revolution.
     fn apply(&self, k_c: f64) -> Vec<f64> {
-        let len = self.spectrum.len();
+        let len = self.len;
         let cpr_per_bin = self.samples_per_rev as f64 / len as f64;
-        let mut buf: Vec<Complex<f64>> = self
-            .spectrum
-            .iter()
-            .enumerate()
-            .map(|(j, c)| c * response(j.min(len - j) as f64 * cpr_per_bin, k_c) / len as f64)
+        let bins: Vec<Complex<f64>> = (self.spectrum.iter().enumerate())
+            .map(|(j, c)| c * response(j as f64 * cpr_per_bin, k_c) / len as f64)
             .collect();
-        inverse_by_forward(&*self.forward, &mut buf);
         let skip = EXTENSION_REVS * self.samples_per_rev;
-        buf[skip..skip + self.samples]
-            .iter()
-            .map(|c| c.re)
-            .collect()
+        real_inverse(&*self.inverse, bins)[skip..skip + self.samples].to_vec()
     }
 }
 
@@ -303,14 +294,26 @@ pub fn split(
     spindle_rpm: f64,
     limits: Option<&SplitLimits>,
 ) -> Result<Split, SplitError> {
+    split_on(signal, &signal.uniform(), spec, spindle_rpm, limits)
+}
+
+/// [`split`] with the signal's uniform grid given ([`PathSignal::uniform`]), so that a caller
+/// analysing the signal otherwise resamples it once.
+pub fn split_on(
+    signal: &PathSignal,
+    grid: &Result<UniformSignal, SignalError>,
+    spec: &SplitSpec,
+    spindle_rpm: f64,
+    limits: Option<&SplitLimits>,
+) -> Result<Split, SplitError> {
     positive("machine.spindle_rpm", spindle_rpm)?;
     if let Some(l) = limits {
         validate(l)?;
     }
-    let grid = signal.uniform()?;
+    let grid = grid.as_ref().map_err(Clone::clone)?;
     let ctx = Context {
         signal,
-        grid: &grid,
+        grid,
         rpm: spindle_rpm,
     };
     match spec {
@@ -329,7 +332,7 @@ pub fn split(
             }
             let k_c = cutoff_hz * 60.0 / spindle_rpm;
             // The filter is let go before the checks' own transforms.
-            let z_grid = LowPass::new(&grid).apply(k_c);
+            let z_grid = LowPass::new(grid).apply(k_c);
             Ok(ctx.finish(&z_grid, Some(k_c), limits))
         }
         SplitSpec::Auto => {
@@ -414,11 +417,7 @@ impl Context<'_> {
         }
         drop(zero);
         // The filter's spectrum is let go before the checks' own transforms.
-        let (k, z_grid) = {
-            let filter = LowPass::new(self.grid);
-            let k = self.lowest_cutoff(&filter, limits.fts_stroke_mm);
-            (k, filter.apply(k))
-        };
+        let (k, z_grid) = self.lowest_cutoff(&LowPass::new(self.grid), limits.fts_stroke_mm);
         let mut s = self.finish(&z_grid, Some(k), None);
         let checks = self.checks((&s.z_slide_mm, &z_grid), &s.w_fts_mm, Some(k), limits);
         s.verdict = verdict(checks, self.rpm, feasible_rpm(&alone, self.rpm));
@@ -426,31 +425,40 @@ impl Context<'_> {
     }
 
     /// The lowest cutoff, cycles per revolution, in [[`AUTO_MIN_CYCLES_PER_REV`], M/2] at which
-    /// W fits `stroke_mm`; M/2 when none does (the stroke check then fails).
-    fn lowest_cutoff(&self, filter: &LowPass, stroke_mm: f64) -> f64 {
+    /// W fits `stroke_mm` (M/2 when none does: the stroke check then fails), and the slide's
+    /// channel on the grid at that cutoff.
+    fn lowest_cutoff(&self, filter: &LowPass, stroke_mm: f64) -> (f64, Vec<f64>) {
+        // W's PV at the points for cutoff k, and Z on the grid.
         let pv_w = |k: f64| {
-            let z = self.grid.at_path(&filter.apply(k), &self.signal.angle_rad);
-            peak_to_valley(self.signal.z_mm.iter().zip(&z).map(|(a, b)| a - b))
+            let z_grid = filter.apply(k);
+            let s = self.signal;
+            let w = (s.z_mm.iter().zip(&s.angle_rad))
+                .map(|(z, &a)| z - self.grid.interpolate(&z_grid, a));
+            (peak_to_valley(w), z_grid)
         };
         let (mut lo, mut hi) = (
             AUTO_MIN_CYCLES_PER_REV,
             self.grid.samples_per_rev as f64 / 2.0,
         );
-        if pv_w(lo) <= stroke_mm {
-            return lo;
+        let (pv, at_lo) = pv_w(lo);
+        if pv <= stroke_mm {
+            return (lo, at_lo);
         }
-        if pv_w(hi) > stroke_mm {
-            return hi;
+        drop(at_lo);
+        let (pv, mut at_hi) = pv_w(hi);
+        if pv > stroke_mm {
+            return (hi, at_hi);
         }
         while hi / lo > 1.0 + AUTO_PRECISION {
             let mid = (lo * hi).sqrt();
-            if pv_w(mid) <= stroke_mm {
-                hi = mid;
+            let (pv, at_mid) = pv_w(mid);
+            if pv <= stroke_mm {
+                (hi, at_hi) = (mid, at_mid);
             } else {
                 lo = mid;
             }
         }
-        hi
+        (hi, at_hi)
     }
 
     /// The six checks of the slide channel `(per point, on the grid)` and the FTS channel `w`

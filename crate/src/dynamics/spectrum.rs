@@ -331,12 +331,13 @@ pub fn fast_length(n: usize, even: bool) -> usize {
     }
 }
 
-/// The analytic signal of `x`, `x + i·H{x}` with H the Hilbert transform by the FFT (the
+/// The analytic signal of `x`, `x + i·H{x}` as its real and imaginary parts, with H the
+/// Hilbert transform by the FFT (the
 /// spectrum of `x` turned by −90° at positive frequencies, +90° at negative ones, its 0 and
 /// Nyquist bins removed; by real-input transforms), the first and last `taper` samples rolled off
 /// by a raised cosine and the record padded with [`PAD_TAPERS`] times as many zeros or more
 /// (with as many as it has samples if `taper` is 0), to a [`fast_length`] (module docs).
-pub fn analytic_signal(x: Vec<f64>, taper: usize) -> Vec<Complex<f64>> {
+pub fn analytic_signal(x: Vec<f64>, taper: usize) -> (Vec<f64>, Vec<f64>) {
     let n = x.len();
     let taper = taper.min(n / 2);
     let roll = |j: usize| {
@@ -369,12 +370,9 @@ pub fn analytic_signal(x: Vec<f64>, taper: usize) -> Vec<Complex<f64>> {
         };
     }
     let inverse = RealFftPlanner::<f64>::new().plan_fft_inverse(len);
-    let hilbert = real_inverse(&*inverse, bins);
-    rolled
-        .iter()
-        .zip(&hilbert)
-        .map(|(&re, &im)| Complex::new(re, im))
-        .collect()
+    let mut hilbert = real_inverse(&*inverse, bins);
+    hilbert.truncate(n);
+    (rolled, hilbert)
 }
 
 /// The instantaneous frequency of the path's non-symmetric part at `spindle_rpm` in `bands`
@@ -405,39 +403,54 @@ pub fn instantaneous_frequency_on(
     } else {
         0
     };
-    let a = analytic_signal(residual(grid, &grid.z_mm), skip);
+    let (re, im) = analytic_signal(residual(grid, &grid.z_mm), skip);
     let rho_max = grid.rho_mm.iter().copied().fold(0.0, f64::max);
     let width = rho_max / bands as f64;
-    let band_of = |rho: f64| {
+    // The band of the pair of samples j, j + 1.
+    let band_of = |j: usize| {
+        let rho = 0.5 * (grid.rho_mm[j] + grid.rho_mm[j + 1]);
         if width > 0.0 {
             (((rho_max - rho) / width).floor().max(0.0) as usize).min(bands - 1)
         } else {
             0
         }
     };
-    // (frequency Hz, envelope) per band.
-    let mut per_band: Vec<Vec<(f64, f64)>> = vec![Vec::new(); bands];
-    let m = grid.samples_per_rev as f64;
-    for j in skip..a.len().saturating_sub(1 + skip) {
-        let turn = (a[j + 1] * a[j].conj()).arg() / TAU;
-        let envelope = 0.5 * (a[j].norm() + a[j + 1].norm());
-        let rho = 0.5 * (grid.rho_mm[j] + grid.rho_mm[j + 1]);
-        per_band[band_of(rho)].push((hz(turn * m, spindle_rpm), envelope));
+    let pairs = skip..re.len().saturating_sub(1 + skip);
+    // Each band's first and last pair: a spiral meets the bands in turn, so each band's pairs
+    // are gathered from its own stretch of the record, one band at a time.
+    let mut stretch = vec![(usize::MAX, 0); bands];
+    for j in pairs {
+        let s = &mut stretch[band_of(j)];
+        *s = (s.0.min(j), j);
     }
-    per_band
-        .into_iter()
-        .enumerate()
-        .filter(|(_, v)| !v.is_empty())
-        .map(|(b, mut v)| {
+    let m = grid.samples_per_rev as f64;
+    // (frequency Hz, envelope) of pair j.
+    let frequency = |j: usize| {
+        let (a, b) = (
+            Complex::new(re[j], im[j]),
+            Complex::new(re[j + 1], im[j + 1]),
+        );
+        let turn = (b * a.conj()).arg() / TAU;
+        (hz(turn * m, spindle_rpm), 0.5 * (a.norm() + b.norm()))
+    };
+    (stretch.into_iter().enumerate())
+        .filter(|(_, (first, _))| *first != usize::MAX)
+        .map(|(b, (first, last))| {
+            let mut v: Vec<(f64, f64)> = (first..=last)
+                .filter(|&j| band_of(j) == b)
+                .map(frequency)
+                .collect();
             let mut env: Vec<f64> = v.iter().map(|e| e.1).collect();
-            env.sort_by(f64::total_cmp);
-            v.sort_by(|p, q| p.0.total_cmp(&q.0));
+            let middle = env.len() / 2;
+            let (_, median_envelope, _) = env.select_nth_unstable_by(middle, f64::total_cmp);
+            // Equal frequencies are one value to the quantiles: their order does not matter.
+            v.sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
             BandFrequency {
                 rho_outer_mm: rho_max - b as f64 * width,
                 rho_inner_mm: rho_max - (b + 1) as f64 * width,
                 median_hz: weighted_quantile(&v, 0.5),
                 p95_hz: weighted_quantile(&v, 0.95),
-                amplitude_um: env[env.len() / 2] * 1e3,
+                amplitude_um: *median_envelope * 1e3,
             }
         })
         .collect()

@@ -33,7 +33,7 @@ use crate::dynamics::axis_checks::{AxisReport, AxisSample, check_axes};
 use crate::dynamics::fts_grid::{FtsGrid, FtsGridReport, ServoPath};
 use crate::dynamics::path_signal::{PathSignal, UniformSignal, extremes, hz, peak_to_valley};
 use crate::dynamics::spectrum::{
-    BandFrequency, Spectrum, amplitude_spectrum_on, highest_significant_cycles_per_rev,
+    BandFrequency, Spectrum, amplitude_spectrum_on, highest_significant_of,
     instantaneous_frequency_on,
 };
 use crate::dynamics::split::{Limit, SplitError, SplitLimits, Verdict, split_on};
@@ -68,18 +68,21 @@ impl From<crate::field::FieldError> for DynamicsError {
 /// Bins of the spectrum kept for display (peaks survive the decimation).
 pub const SPECTRUM_BINS: usize = 2048;
 
-/// The most points the dynamics analyse (about 2.0 GB in memory).
-pub const MAX_POINTS: u64 = 14_000_000;
+/// The most points the dynamics analyse (about 1.9 GB in memory).
+pub const MAX_POINTS: u64 = 15_000_000;
 
-/// The peak memory of the dynamics per path point, bytes, with some room: 118–119 MiB
-/// (124–125 MB) of peak resident set for 1 000 001 points of the sine grid
-/// (`sinusoid-grid-fts.json` at 1 000 points a revolution) with each kind of split, 96 MiB
-/// with machine limits alone (`python3 tests/bench/peak_memory.py`), 462 MB for 4 000 001
-/// points and 1.32 GB for 11 990 001 (automatic split: 110 bytes a point). The peak is the
-/// split's checks: a channel's spectrum (a real-input transform at most 1/8 longer than the
-/// path, 16 bytes a sample with its output, and its plan) beside the path's columns (32 bytes a
-/// point), its grid (16) and the channels at the points and on the grid (32).
-pub const BYTES_PER_POINT: u64 = 140;
+/// The peak memory of the dynamics per path point, bytes, with some room: 104–110 MiB
+/// (109–115 MB) of peak resident set for 1 000 001 points of the sine grid
+/// (`sinusoid-grid-fts.json` at 1 000 points a revolution) with each kind of split, 96 MiB with
+/// machine limits alone (`python3 tests/bench/peak_memory.py`),
+/// 371–401 MB for 4 000 001 points and 1.30 GB for 13 990 001 (automatic split: 93 bytes a
+/// point). The path's columns (32 bytes a point) and its uniform grid (16) are held throughout;
+/// beside them the largest are the transforms (a real-input transform at most 1/8 longer than
+/// the path, about 16 bytes a sample with its output, and its plan): the Hilbert transform's
+/// with the record it turns, the low-pass's with its spectrum and the slide's channel, a
+/// channel's bandwidth figure with the channel. The channels at the points (16 bytes) are made
+/// after their spectra.
+pub const BYTES_PER_POINT: u64 = 125;
 
 /// Radius bands of the instantaneous frequency.
 pub const FREQUENCY_BANDS: usize = 32;
@@ -128,9 +131,8 @@ pub struct SlideBandwidths {
 }
 
 impl BandwidthCheck {
-    /// The check of a channel given on the uniform grid `grid` (its values `on_grid`).
-    fn of(grid: Option<(&UniformSignal, &[f64])>, rpm: f64, limit_hz: Option<f64>) -> Self {
-        let needed_hz = grid.map(|(g, v)| hz(highest_significant_cycles_per_rev(g, v), rpm));
+    /// The check of a channel that needs `needed_hz` (unknown: `None`).
+    fn of(needed_hz: Option<f64>, limit_hz: Option<f64>) -> Self {
         let within_limit = match (needed_hz, limit_hz) {
             (Some(n), Some(l)) => n <= l,
             _ => true,
@@ -427,6 +429,11 @@ impl Dynamics {
         let instantaneous_frequency = grid.map_or_else(Vec::new, |g| {
             instantaneous_frequency_on(g, rpm, FREQUENCY_BANDS)
         });
+        // A channel's highest significant frequency on the grid, Hz, its values handed over to
+        // the transform; X's before the split, while only the path and its grid are held.
+        let needed_hz =
+            |g: &UniformSignal, values: Vec<f64>| hz(highest_significant_of(g, values), rpm);
+        let x_needed_hz = grid.map(|g| needed_hz(g, g.rho_mm.clone()));
         let (split_report, z_slide, w_fts) = match &job.strategy.split {
             None => (None, None, None),
             Some(spec) => {
@@ -448,23 +455,13 @@ impl Dynamics {
         });
         let axes = check_axes(samples, machine);
         // The slide's Z on the grid: the path's, or its share of a split path resampled alike.
-        let slide_grid = z_slide.as_ref().map(|z| signal.uniform_values(z));
-        let slide_z = match (&slide_grid, grid) {
-            (Some(z), Some(_)) => Some(&z[..]),
-            (None, Some(g)) => Some(&g.z_mm[..]),
-            (_, None) => None,
-        };
+        let z_needed_hz = grid.map(|g| match &z_slide {
+            Some(z) => needed_hz(g, signal.uniform_values(z)),
+            None => needed_hz(g, g.z_mm.clone()),
+        });
         let bandwidth = SlideBandwidths {
-            x: BandwidthCheck::of(
-                grid.map(|g| (g, &g.rho_mm[..])),
-                rpm,
-                machine.x_slide.map(|s| s.bandwidth_hz),
-            ),
-            z: BandwidthCheck::of(
-                grid.zip(slide_z),
-                rpm,
-                machine.z_slide.map(|s| s.bandwidth_hz),
-            ),
+            x: BandwidthCheck::of(x_needed_hz, machine.x_slide.map(|s| s.bandwidth_hz)),
+            z: BandwidthCheck::of(z_needed_hz, machine.z_slide.map(|s| s.bandwidth_hz)),
         };
         let channels = match (&z_slide, &w_fts) {
             (Some(z), Some(w)) => Some(ChannelProfile::of(&signal.rho_mm, z, w)),

@@ -174,8 +174,14 @@ pub(crate) fn real_inverse(
 
 /// The non-symmetric residual of `values` on `grid`.
 fn residual(grid: &UniformSignal, values: &[f64]) -> Vec<f64> {
-    let sym = grid.symmetric_part(values);
-    values.iter().zip(&sym).map(|(v, s)| v - s).collect()
+    residual_of(grid, values.to_vec())
+}
+
+/// [`residual`] of `values` held by the caller, computed in their place.
+fn residual_of(grid: &UniformSignal, mut values: Vec<f64>) -> Vec<f64> {
+    let sym = grid.symmetric_part(&values);
+    values.iter_mut().zip(&sym).for_each(|(v, s)| *v -= s);
+    values
 }
 
 /// Peaks of an amplitude spectrum sampled every `q` of the record's bins (q ≤ 1: a record
@@ -304,8 +310,14 @@ pub fn amplitude_spectrum_on(grid: &UniformSignal, spindle_rpm: f64, max_bins: u
 /// record is padded to a [`fast_length`] (at most 1/8 longer, so the spectrum is sampled a
 /// little more finely than its bins, and the transform is not Bluestein's).
 pub fn highest_significant_cycles_per_rev(grid: &UniformSignal, values: &[f64]) -> f64 {
+    highest_significant_of(grid, values.to_vec())
+}
+
+/// [`highest_significant_cycles_per_rev`] of `values` held by the caller, whose memory the
+/// transform takes over.
+pub(crate) fn highest_significant_of(grid: &UniformSignal, values: Vec<f64>) -> f64 {
     let len = fast_length(values.len(), false);
-    let a = hann_amplitudes(residual(grid, values), len);
+    let a = hann_amplitudes(residual_of(grid, values), len);
     let top = a.iter().copied().fold(0.0, f64::max);
     let floor = (SIGNIFICANT_FRACTION * top).max(NEGLIGIBLE_MM);
     a.iter()

@@ -51,9 +51,7 @@
 use crate::dynamics::path_signal::{
     PathSignal, SignalError, UniformSignal, hz, omega, peak_to_valley,
 };
-use crate::dynamics::spectrum::{
-    fast_length, highest_significant_cycles_per_rev, real_inverse, real_spectrum,
-};
+use crate::dynamics::spectrum::{fast_length, highest_significant_of, real_inverse, real_spectrum};
 use crate::field::{FieldError, positive};
 use crate::job::SplitSpec;
 use realfft::{ComplexToReal, RealFftPlanner};
@@ -256,7 +254,10 @@ impl LowPass {
             .map(|(j, c)| c * response(j as f64 * cpr_per_bin, k_c) / len as f64)
             .collect();
         let skip = EXTENSION_REVS * self.samples_per_rev;
-        real_inverse(&*self.inverse, bins)[skip..skip + self.samples].to_vec()
+        let mut out = real_inverse(&*self.inverse, bins);
+        out.truncate(skip + self.samples);
+        out.drain(..skip);
+        out
     }
 }
 
@@ -317,7 +318,9 @@ pub fn split_on(
         rpm: spindle_rpm,
     };
     match spec {
-        SplitSpec::Symmetric => Ok(ctx.finish(&grid.symmetric_part(&grid.z_mm), None, limits)),
+        SplitSpec::Symmetric => {
+            Ok(ctx.finish(&grid.symmetric_part(&grid.z_mm), None, limits, None))
+        }
         SplitSpec::LowPass { cutoff_hz } => {
             let nyquist = hz(grid.samples_per_rev as f64 / 2.0, spindle_rpm);
             if !(cutoff_hz.is_finite() && *cutoff_hz > 0.0 && *cutoff_hz <= nyquist) {
@@ -333,7 +336,7 @@ pub fn split_on(
             let k_c = cutoff_hz * 60.0 / spindle_rpm;
             // The filter is let go before the checks' own transforms.
             let z_grid = LowPass::new(grid).apply(k_c);
-            Ok(ctx.finish(&z_grid, Some(k_c), limits))
+            Ok(ctx.finish(&z_grid, Some(k_c), limits, None))
         }
         SplitSpec::Auto => {
             let Some(limits) = limits else {
@@ -372,24 +375,27 @@ struct Context<'a> {
 
 impl Context<'_> {
     /// The split with slide channel `z_grid` on the grid: Z at the points by interpolation,
-    /// W = z − Z, and the verdict.
+    /// W = z − Z, and the verdict against `limits` (`other_rpm` a feasible speed found for
+    /// another split). The channels' spectra come first, before the channels at the points
+    /// are held beside their transforms.
     fn finish(
         &self,
         z_grid: &[f64],
         cutoff_cpr: Option<f64>,
         limits: Option<&SplitLimits>,
+        other_rpm: Option<f64>,
     ) -> Split {
-        let z = self.grid.at_path(z_grid, &self.signal.angle_rad);
-        let w: Vec<f64> = self
-            .signal
-            .z_mm
-            .iter()
-            .zip(&z)
-            .map(|(a, b)| a - b)
-            .collect();
-        let verdict = match limits {
-            None => Verdict::Unchecked,
-            Some(l) => verdict(self.checks((&z, z_grid), &w, cutoff_cpr, l), self.rpm, None),
+        let s = self.signal;
+        let slide_at = |i: usize| self.grid.interpolate(z_grid, s.angle_rad[i]);
+        let bandwidths = limits.map(|_| {
+            let w_is_zero = (0..s.len()).all(|i| s.z_mm[i] - slide_at(i) == 0.0);
+            self.bandwidths(z_grid, cutoff_cpr, w_is_zero)
+        });
+        let z: Vec<f64> = (0..s.len()).map(slide_at).collect();
+        let w: Vec<f64> = s.z_mm.iter().zip(&z).map(|(a, b)| a - b).collect();
+        let verdict = match (limits, bandwidths) {
+            (Some(l), Some(b)) => verdict(self.checks(&z, &w, b, l), self.rpm, other_rpm),
+            _ => Verdict::Unchecked,
         };
         Split {
             z_slide_mm: z,
@@ -401,9 +407,10 @@ impl Context<'_> {
 
     /// The automatic split (module docs).
     fn auto(&self, limits: &SplitLimits) -> Split {
+        let bandwidths = self.bandwidths(&self.grid.z_mm, None, true);
         let z = &self.signal.z_mm;
         let zero = vec![0.0; z.len()];
-        let alone = self.checks((z, &self.grid.z_mm), &zero, None, limits);
+        let alone = self.checks(z, &zero, bandwidths, limits);
         if alone.iter().all(Check::passes) {
             return Split {
                 z_slide_mm: z.clone(),
@@ -418,10 +425,8 @@ impl Context<'_> {
         drop(zero);
         // The filter's spectrum is let go before the checks' own transforms.
         let (k, z_grid) = self.lowest_cutoff(&LowPass::new(self.grid), limits.fts_stroke_mm);
-        let mut s = self.finish(&z_grid, Some(k), None);
-        let checks = self.checks((&s.z_slide_mm, &z_grid), &s.w_fts_mm, Some(k), limits);
-        s.verdict = verdict(checks, self.rpm, feasible_rpm(&alone, self.rpm));
-        s
+        let alone_rpm = feasible_rpm(&alone, self.rpm);
+        self.finish(&z_grid, Some(k), Some(limits), alone_rpm)
     }
 
     /// The lowest cutoff, cycles per revolution, in [[`AUTO_MIN_CYCLES_PER_REV`], M/2] at which
@@ -461,22 +466,38 @@ impl Context<'_> {
         (hi, at_hi)
     }
 
-    /// The six checks of the slide channel `(per point, on the grid)` and the FTS channel `w`
-    /// (per point); the slide's bandwidth figure is the cutoff when there is one, else Z's
-    /// highest significant frequency. W's bandwidth is taken on the grid as `z − Z`.
+    /// The bandwidth figures, Hz, of the slide's channel `z_grid` on the grid and of the
+    /// servo's: the slide's is the cutoff when there is one, else Z's highest significant
+    /// frequency; the servo's is that of W taken on the grid as `z − Z`, 0 when W is 0 at
+    /// every point (`w_is_zero`).
+    fn bandwidths(&self, z_grid: &[f64], cutoff_cpr: Option<f64>, w_is_zero: bool) -> (f64, f64) {
+        let band = |v: Vec<f64>| hz(highest_significant_of(self.grid, v), self.rpm);
+        let slide = cutoff_cpr.map_or_else(|| band(z_grid.to_vec()), |k| hz(k, self.rpm));
+        let fts = if w_is_zero {
+            0.0
+        } else {
+            band(
+                (self.grid.z_mm.iter().zip(z_grid))
+                    .map(|(a, b)| a - b)
+                    .collect(),
+            )
+        };
+        (slide, fts)
+    }
+
+    /// The six checks of the slide channel `z` and the FTS channel `w` (per point), with the
+    /// bandwidth figures `(slide, servo)` of [`Self::bandwidths`].
     fn checks(
         &self,
-        z: (&[f64], &[f64]),
+        z: &[f64],
         w: &[f64],
-        cutoff_cpr: Option<f64>,
+        (slide_hz, fts_hz): (f64, f64),
         l: &SplitLimits,
     ) -> Vec<Check> {
         let s = self.signal;
         let om = omega(self.rpm);
-        let (ez, ew) = (s.angle_extremes(z.0), s.angle_extremes(w));
+        let (ez, ew) = (s.angle_extremes(z), s.angle_extremes(w));
         let rho = |i: usize| s.rho_mm.get(i).copied();
-        let band = |v: &[f64]| hz(highest_significant_cycles_per_rev(self.grid, v), self.rpm);
-        let w_grid: Vec<f64> = self.grid.z_mm.iter().zip(z.1).map(|(a, b)| a - b).collect();
         let check = |limit: Limit, value: f64, at: Option<f64>| Check {
             limit,
             value,
@@ -494,21 +515,9 @@ impl Context<'_> {
                 ez.curvature_mm_per_rad2 * om * om,
                 rho(ez.curvature_at),
             ),
-            check(
-                Limit::SlideBandwidthHz,
-                cutoff_cpr.map_or_else(|| band(z.1), |k| hz(k, self.rpm)),
-                None,
-            ),
+            check(Limit::SlideBandwidthHz, slide_hz, None),
             check(Limit::FtsStrokeMm, peak_to_valley(w.iter().copied()), None),
-            check(
-                Limit::FtsBandwidthHz,
-                if w.iter().all(|v| *v == 0.0) {
-                    0.0
-                } else {
-                    band(&w_grid)
-                },
-                None,
-            ),
+            check(Limit::FtsBandwidthHz, fts_hz, None),
             check(
                 Limit::FtsAccelerationMmPerS2,
                 ew.curvature_mm_per_rad2 * om * om,

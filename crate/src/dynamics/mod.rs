@@ -69,20 +69,20 @@ impl From<crate::field::FieldError> for DynamicsError {
 pub const SPECTRUM_BINS: usize = 2048;
 
 /// The most points the dynamics analyse (about 1.9 GB in memory).
-pub const MAX_POINTS: u64 = 15_000_000;
+pub const MAX_POINTS: u64 = 17_000_000;
 
-/// The peak memory of the dynamics per path point, bytes, with some room: 104–110 MiB
-/// (109–115 MB) of peak resident set for 1 000 001 points of the sine grid
-/// (`sinusoid-grid-fts.json` at 1 000 points a revolution) with each kind of split, 96 MiB with
-/// machine limits alone (`python3 tests/bench/peak_memory.py`),
-/// 371–401 MB for 4 000 001 points and 1.30 GB for 13 990 001 (automatic split: 93 bytes a
-/// point). The path's columns (32 bytes a point) and its uniform grid (16) are held throughout;
-/// beside them the largest are the transforms (a real-input transform at most 1/8 longer than
-/// the path, about 16 bytes a sample with its output, and its plan): the Hilbert transform's
-/// with the record it turns, the low-pass's with its spectrum and the slide's channel, a
-/// channel's bandwidth figure with the channel. The channels at the points (16 bytes) are made
-/// after their spectra.
-pub const BYTES_PER_POINT: u64 = 125;
+/// The peak memory of the dynamics per path point, bytes, with some room: 95–97 MiB
+/// (100–102 MB) of peak resident set for 1 000 001 points of the sine grid
+/// (`sinusoid-grid-fts.json` at 1 000 points a revolution) with each kind of split or with
+/// machine limits alone (`python3 tests/bench/peak_memory.py`), 341 MB for 4 000 001 points and
+/// 1.19 GB for 13 990 001 (automatic split: 85 bytes a point). The path's columns (32 bytes a
+/// point) and its uniform grid's heights (8) are held throughout, the grid's radii (8) until
+/// X's bandwidth figure takes them; beside them the largest are the transforms (a real-input
+/// transform at most 1/8 longer than the path, about 16 bytes a sample with its output, and its
+/// plan): the Hilbert transform's with the record it turns, the low-pass's with its spectrum
+/// and the slide's channel, a channel's bandwidth figure with the channel. The channels at the
+/// points (16 bytes) are made after their spectra.
+pub const BYTES_PER_POINT: u64 = 112;
 
 /// Radius bands of the instantaneous frequency.
 pub const FREQUENCY_BANDS: usize = 32;
@@ -421,7 +421,7 @@ impl Dynamics {
         let rpm = machine.spindle_rpm;
         let signal = &path.signal;
         // The path on its uniform grid, resampled once for every analysis below.
-        let uniform = signal.uniform();
+        let mut uniform = signal.uniform();
         let grid = uniform.as_ref().ok();
         let spectrum = grid.map_or_else(Spectrum::default, |g| {
             amplitude_spectrum_on(g, rpm, SPECTRUM_BINS)
@@ -430,10 +430,15 @@ impl Dynamics {
             instantaneous_frequency_on(g, rpm, FREQUENCY_BANDS)
         });
         // A channel's highest significant frequency on the grid, Hz, its values handed over to
-        // the transform; X's before the split, while only the path and its grid are held.
+        // the transform. X's comes before the split, and takes the grid's radii themselves:
+        // nothing after needs them.
         let needed_hz =
             |g: &UniformSignal, values: Vec<f64>| hz(highest_significant_of(g, values), rpm);
-        let x_needed_hz = grid.map(|g| needed_hz(g, g.rho_mm.clone()));
+        let x_needed_hz = uniform.as_mut().ok().map(|g| {
+            let rho = std::mem::take(&mut g.rho_mm);
+            needed_hz(g, rho)
+        });
+        let grid = uniform.as_ref().ok();
         let (split_report, z_slide, w_fts) = match &job.strategy.split {
             None => (None, None, None),
             Some(spec) => {

@@ -498,6 +498,38 @@ mod tests {
     use crate::dynamics::path_signal::tests::spiral;
 
     #[test]
+    fn real_transforms_are_the_direct_sums() {
+        // Against the DFT summed term by term, for odd and even lengths and records padded
+        // with zeros; the inverse gives the record back, len times.
+        for (n, len) in [
+            (1, 1),
+            (2, 2),
+            (5, 5),
+            (6, 9),
+            (7, 8),
+            (12, 12),
+            (13, 27),
+            (20, 24),
+        ] {
+            let x: Vec<f64> = (0..n).map(|j| ((j * j) as f64 * 0.7).sin() + 0.1).collect();
+            let bins = real_spectrum(x.clone(), len);
+            assert_eq!(bins.len(), len / 2 + 1);
+            for (k, b) in bins.iter().enumerate() {
+                let direct: Complex<f64> = (x.iter().enumerate())
+                    .map(|(j, v)| v * Complex::from_polar(1.0, -TAU * (j * k) as f64 / len as f64))
+                    .sum();
+                assert!((b - direct).norm() < 1e-13, "n {n}, len {len}, bin {k}");
+            }
+            let inverse = RealFftPlanner::<f64>::new().plan_fft_inverse(len);
+            let back = real_inverse(&*inverse, bins);
+            for (j, v) in back.iter().enumerate() {
+                let want = x.get(j).copied().unwrap_or(0.0) * len as f64;
+                assert!((v - want).abs() < 1e-12, "n {n}, len {len}, sample {j}");
+            }
+        }
+    }
+
+    #[test]
     fn fast_lengths_are_the_smallest_products_of_twos_and_threes() {
         // Every 2^a·3^b up to 2^40, sorted: the brute-force reference.
         let mut smooth: Vec<usize> = (0..=40u32)

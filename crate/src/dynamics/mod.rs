@@ -33,7 +33,7 @@ use crate::dynamics::axis_checks::{AxisReport, AxisSample, check_axes};
 use crate::dynamics::fts_grid::{FtsGrid, FtsGridReport, ServoPath};
 use crate::dynamics::path_signal::{PathSignal, UniformSignal, extremes, hz, peak_to_valley};
 use crate::dynamics::spectrum::{
-    BandFrequency, Spectrum, amplitude_spectrum_on, highest_significant_of,
+    BandFrequency, Spectrum, amplitude_spectrum_on, highest_significant_cycles_per_rev,
     instantaneous_frequency_on,
 };
 use crate::dynamics::split::{Limit, SplitError, SplitLimits, Verdict, split_on};
@@ -432,8 +432,9 @@ impl Dynamics {
         // A channel's highest significant frequency on the grid, Hz, its values handed over to
         // the transform. X's comes before the split, and takes the grid's radii themselves:
         // nothing after needs them.
-        let needed_hz =
-            |g: &UniformSignal, values: Vec<f64>| hz(highest_significant_of(g, values), rpm);
+        let needed_hz = |g: &UniformSignal, values: Vec<f64>| {
+            hz(highest_significant_cycles_per_rev(g, values), rpm)
+        };
         let x_needed_hz = uniform.as_mut().ok().map(|g| {
             let rho = std::mem::take(&mut g.rho_mm);
             needed_hz(g, rho)

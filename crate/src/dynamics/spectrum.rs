@@ -308,14 +308,9 @@ pub fn amplitude_spectrum_on(grid: &UniformSignal, spindle_rpm: f64, max_bins: u
 /// non-symmetric part of `values` (one per grid sample) reaches [`SIGNIFICANT_FRACTION`] of its
 /// largest amplitude (and 1 pm); 0 when there is none. The bandwidth figure of a channel. The
 /// record is padded to a [`fast_length`] (at most 1/8 longer, so the spectrum is sampled a
-/// little more finely than its bins, and the transform is not Bluestein's).
-pub fn highest_significant_cycles_per_rev(grid: &UniformSignal, values: &[f64]) -> f64 {
-    highest_significant_of(grid, values.to_vec())
-}
-
-/// [`highest_significant_cycles_per_rev`] of `values` held by the caller, whose memory the
-/// transform takes over.
-pub(crate) fn highest_significant_of(grid: &UniformSignal, values: Vec<f64>) -> f64 {
+/// little more finely than its bins, and the transform is not Bluestein's). `values` are
+/// handed over: the transform takes their memory.
+pub fn highest_significant_cycles_per_rev(grid: &UniformSignal, values: Vec<f64>) -> f64 {
     let len = fast_length(values.len(), false);
     let a = hann_amplitudes(residual_of(grid, values), len);
     let top = a.iter().copied().fold(0.0, f64::max);

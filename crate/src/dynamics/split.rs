@@ -51,7 +51,9 @@
 use crate::dynamics::path_signal::{
     PathSignal, SignalError, UniformSignal, hz, omega, peak_to_valley,
 };
-use crate::dynamics::spectrum::{fast_length, highest_significant_of, real_inverse, real_spectrum};
+use crate::dynamics::spectrum::{
+    fast_length, highest_significant_cycles_per_rev, real_inverse, real_spectrum,
+};
 use crate::field::{FieldError, positive};
 use crate::job::SplitSpec;
 use realfft::{ComplexToReal, RealFftPlanner};
@@ -225,9 +227,8 @@ pub fn response(k: f64, k_c: f64) -> f64 {
 struct LowPass {
     /// Bins 0 … len/2 of the extended signal's spectrum.
     spectrum: Vec<Complex<f64>>,
+    /// The inverse transform, of the extended signal's length.
     inverse: Arc<dyn ComplexToReal<f64>>,
-    /// Length of the extended signal.
-    len: usize,
     samples: usize,
     samples_per_rev: usize,
 }
@@ -240,7 +241,6 @@ impl LowPass {
         Self {
             spectrum: real_spectrum(extended, len),
             inverse: RealFftPlanner::new().plan_fft_inverse(len),
-            len,
             samples: grid.len(),
             samples_per_rev: grid.samples_per_rev,
         }
@@ -248,7 +248,7 @@ impl LowPass {
 
     /// The filtered grid signal at cutoff `k_c` cycles per revolution.
     fn apply(&self, k_c: f64) -> Vec<f64> {
-        let len = self.len;
+        let len = self.inverse.len();
         let cpr_per_bin = self.samples_per_rev as f64 / len as f64;
         let bins: Vec<Complex<f64>> = (self.spectrum.iter().enumerate())
             .map(|(j, c)| c * response(j as f64 * cpr_per_bin, k_c) / len as f64)
@@ -471,7 +471,7 @@ impl Context<'_> {
     /// frequency; the servo's is that of W taken on the grid as `z − Z`, 0 when W is 0 at
     /// every point (`w_is_zero`).
     fn bandwidths(&self, z_grid: &[f64], cutoff_cpr: Option<f64>, w_is_zero: bool) -> (f64, f64) {
-        let band = |v: Vec<f64>| hz(highest_significant_of(self.grid, v), self.rpm);
+        let band = |v: Vec<f64>| hz(highest_significant_cycles_per_rev(self.grid, v), self.rpm);
         let slide = cutoff_cpr.map_or_else(|| band(z_grid.to_vec()), |k| hz(k, self.rpm));
         let fts = if w_is_zero {
             0.0

@@ -28,8 +28,10 @@
 //!   surface is undefined there) and anything that is not a number is an error.
 //!
 //! **Bounds and errors.** At most [`MAX_NODES`] points, refused from the header before anything
-//! is allocated. Blank lines are allowed before the header and after the data, not among the
-//! data lines; a short file, an extra data line, a wrong number of fields or a value that is
+//! is allocated. Blank lines and comments (lines whose first character other than a blank is
+//! `!`, as scripts write them above the header; Gwyddion's reader of the format skips them there
+//! too) are allowed before the header, before the first data line and after the last, not among
+//! the data lines; a short file, an extra data line, a wrong number of fields or a value that is
 //! not a finite number is an error naming its line ([`DatError`]).
 //!
 //! The reader and writer are independent of the surface that uses them, so that an importer of
@@ -270,6 +272,11 @@ fn fields(line: &str) -> Vec<&str> {
         .collect()
 }
 
+/// Whether `line` is a comment: its first character other than a blank is `!`.
+fn is_comment(line: &str) -> bool {
+    line.trim_start().starts_with('!')
+}
+
 /// A finite number, or None.
 fn number(f: &str) -> Option<f64> {
     f.parse::<f64>().ok().filter(|v| v.is_finite())
@@ -346,7 +353,7 @@ impl GridData {
         let (header_line, header) = loop {
             match lines.next() {
                 None => return Err(DatError::Empty),
-                Some((_, l)) if l.trim().is_empty() => continue,
+                Some((_, l)) if l.trim().is_empty() || is_comment(l) => continue,
                 Some((k, l)) => break (k, parse_header(k, l)?),
             }
         };
@@ -365,9 +372,11 @@ impl GridData {
         let mut count = 0;
         let mut blank = String::new();
         for (line, text) in lines {
-            if text.trim().is_empty() {
+            let comment = is_comment(text);
+            if text.trim().is_empty() || comment {
                 if count < points && count > 0 && blank.is_empty() {
-                    blank = format!(" (line {line} is blank: data lines must follow one another)");
+                    let what = if comment { "a comment" } else { "blank" };
+                    blank = format!(" (line {line} is {what}: data lines must follow one another)");
                 }
                 continue;
             }
@@ -593,6 +602,40 @@ mod tests {
                 first_data_line: Some(2),
                 ..g
             }
+        );
+    }
+
+    #[test]
+    fn comments_are_skipped_around_the_data_not_among_it() {
+        let plain = GridData::parse(&numbered(0)).unwrap();
+        let text = numbered(0);
+        let mut lines: Vec<&str> = text.lines().collect();
+        let mut t = String::from("! Grid sag written by a script\r\n  ! units: mm\r\n\r\n");
+        for (k, line) in lines.iter().enumerate() {
+            t.push_str(line);
+            t.push_str("\r\n");
+            if k == 0 {
+                t.push_str("! the data, from the upper left\r\n");
+            }
+        }
+        t.push_str("! end\r\n\r\n");
+        let g = GridData::parse(&t).unwrap();
+        assert_eq!(
+            g,
+            GridData {
+                first_data_line: Some(6),
+                ..plain
+            }
+        );
+        let e = GridData::parse(&t.replacen("4 0.5 -0.25", "4 x -0.25", 1)).unwrap_err();
+        assert!(e.to_string().starts_with("line 10 (point 5 of 30"), "{e}");
+        // Among the data a comment would shift every later point's line: refused like a gap.
+        lines.insert(4, "! a comment");
+        let e = GridData::parse(&lines.join("\n")).unwrap_err().to_string();
+        assert!(
+            e.starts_with("the file ends after 3 of the 30 data lines")
+                && e.contains("line 5 is a comment"),
+            "{e}"
         );
     }
 

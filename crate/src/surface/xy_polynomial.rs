@@ -53,11 +53,12 @@ impl XyPolynomial {
         let mut terms = Vec::with_capacity(spec.terms.len());
         for (n, t) in spec.terms.iter().enumerate() {
             let field = format!("terms[{n}]");
-            if t.x + t.y > MAX_DEGREE {
+            // In u64: two u32 powers may add up past u32::MAX.
+            if u64::from(t.x) + u64::from(t.y) > u64::from(MAX_DEGREE) {
                 return Err(FieldError::new(
-                    format!("{field}.x + y"),
-                    t.x + t.y,
-                    format!("total degree must be ≤ {MAX_DEGREE}"),
+                    field,
+                    format!("x{} y{}", t.x, t.y),
+                    format!("the total degree x + y must be ≤ {MAX_DEGREE}"),
                 ));
             }
             if spec.terms[..n].iter().any(|u| u.x == t.x && u.y == t.y) {
@@ -188,10 +189,14 @@ mod tests {
             y,
             coefficient_mm: 1.0,
         };
+        let e = XyPolynomial::new(&spec(vec![t(6, 5)])).unwrap_err();
         assert_eq!(
-            XyPolynomial::new(&spec(vec![t(6, 5)])).unwrap_err().field,
-            "terms[0].x + y"
+            e.to_string(),
+            "terms[0] = x6 y5: the total degree x + y must be ≤ 10"
         );
+        // Powers whose sum wraps around in u32 are refused too, not taken for degree 0.
+        let e = XyPolynomial::new(&spec(vec![t(1, 1), t(u32::MAX, 1)])).unwrap_err();
+        assert_eq!(e.field, "terms[1]");
         assert_eq!(
             XyPolynomial::new(&spec(vec![t(1, 1), t(1, 1)]))
                 .unwrap_err()

@@ -354,7 +354,7 @@ const SECTIONS = [
     { path: 'strategy.sampling.max_angle_step_deg', label: 'Largest angle step', unit: '°', hint: '(0, 90]', when: 'constant_arc' },
     { path: 'strategy.direction', label: 'Direction of θ', options: ['ccw', 'cw'] },
     { path: 'strategy.compensation', label: 'Nose compensation', options: ['one_way', 'two_way'], optionLabels: ['one-way (Z only; X on the spiral)', 'two-way (along the normal; X moves)'] },
-    { path: 'strategy.start_angle_deg', label: 'Start angle', unit: '°' },
+    { path: 'strategy.start_angle_deg', label: 'Start angle', unit: '°', hint: '−360 … 360' },
     { path: 'strategy.outer_radius_mm', label: 'Outer radius', unit: 'mm', hint: 'blank: part radius', optional: true },
     { path: 'strategy.overtravel_mm', label: 'Overtravel', unit: 'mm', hint: '≥ 0: the spiral starts this far outside the part; blank: 0', optional: true },
     {

@@ -64,7 +64,7 @@ fn constant_angle_case() -> impl Strategy<Value = (f64, f64, u32, Direction, f64
         0.001..0.5f64,
         3u32..2000,
         direction(),
-        -720.0..720.0f64,
+        -360.0..360.0f64, // the start angle's whole domain
     )
         .prop_filter(
             "at most 200 000 points, a feed at most the radius",
@@ -357,6 +357,9 @@ fn bad_parameters_name_their_field() {
         (1.0, -0.1, angle(10), 0.0, "feed_mm_per_rev"),
         (1.0, f64::INFINITY, angle(10), 0.0, "feed_mm_per_rev"),
         (1.0, 0.1, angle(10), f64::NAN, "start_angle_deg"),
+        // An angle past a turn either way: 1e300° once reached the NC writer as C = 1.7e298.
+        (1.0, 0.1, angle(10), 360.5, "start_angle_deg"),
+        (1.0, 0.1, angle(10), -1e300, "start_angle_deg"),
     ];
     for (r, f, s, start, field) in cases {
         let e = Spiral::new(r, f, &s, Direction::Ccw, start).unwrap_err();
@@ -365,4 +368,7 @@ fn bad_parameters_name_their_field() {
     assert!(Spiral::new(1.0, 0.1, &angle(3), Direction::Cw, 0.0).is_ok());
     assert!(Spiral::new(1.0, 0.1, &angle(1_000_000), Direction::Cw, 0.0).is_ok());
     assert!(Spiral::new(1.0, 0.1, &arc(0.01, 90.0), Direction::Cw, 0.0).is_ok());
+    for start in [-360.0, 360.0] {
+        assert!(Spiral::new(1.0, 0.1, &angle(10), Direction::Cw, start).is_ok());
+    }
 }

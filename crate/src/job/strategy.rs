@@ -17,7 +17,7 @@ pub struct StrategySpec {
     /// Sense of θ along the path; default `ccw`.
     #[serde(default)]
     pub direction: Direction,
-    /// Polar angle of the first point, degrees; default 0.
+    /// Polar angle of the first point, degrees, in [−360, 360]; default 0.
     #[serde(default)]
     pub start_angle_deg: f64,
     /// Radius where the spiral starts, mm; default the part radius.

@@ -37,7 +37,7 @@
 //! The planner uses it as the sampling `space_spiral` ([`spiral`] builds the spiral points
 //! from the projected design points).
 
-use crate::field::{FieldError, finite, positive};
+use crate::field::{FieldError, in_range, positive};
 use crate::job::StrategySpec;
 use crate::path::spiral::{MAX_EXPLICIT_POINTS, Spiral, SpiralPoint, check_points_per_rev};
 use crate::surface::nurbs::basis::KnotVector;
@@ -606,7 +606,7 @@ pub fn spiral(
         ));
     }
     let feed = positive("feed_mm_per_rev", st.feed_mm_per_rev)?;
-    let theta0 = finite("start_angle_deg", st.start_angle_deg)?.to_radians();
+    let theta0 = in_range("start_angle_deg", st.start_angle_deg, -360.0, 360.0)?.to_radians();
     let fail = |e: SpaceSpiralError| FieldError::new("sampling", "space_spiral", e.to_string());
     let spans = base_spans as usize;
     let options = BaseFitOptions {

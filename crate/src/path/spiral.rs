@@ -23,7 +23,7 @@
 //! [`crate::tool::spiral`] picks the builder of each sampling: [`Spiral::new`],
 //! [`crate::path::hcaa::spiral`] or [`crate::path::space_spiral::spiral`].
 
-use crate::field::{FieldError, finite, in_range, positive};
+use crate::field::{FieldError, in_range, positive};
 use crate::job::{Direction, Sampling};
 use std::f64::consts::TAU;
 use std::sync::Arc;
@@ -146,7 +146,7 @@ fn checked_geometry(
     Ok((
         outer,
         feed,
-        finite("start_angle_deg", start_angle_deg)?.to_radians(),
+        in_range("start_angle_deg", start_angle_deg, -360.0, 360.0)?.to_radians(),
     ))
 }
 

@@ -130,7 +130,12 @@ impl LensArray {
             sign,
             part,
             max_centre_radius,
-            max_centre_radius2: max_centre_radius * max_centre_radius,
+            // None is cut when a lenslet is wider than the part (the radius is negative).
+            max_centre_radius2: if max_centre_radius >= 0.0 {
+                max_centre_radius * max_centre_radius
+            } else {
+                -1.0
+            },
             per_pitch: 1.0 / p,
             per_row: 1.0 / row_spacing(spec.grid, p),
         })
@@ -166,6 +171,15 @@ impl LensArray {
 
     /// Calls `visit` with every grid node in the box `[x0, x1] × [y0, y1]` whose lenslet is cut.
     fn centres_in(&self, [x0, x1, y0, y1]: [f64; 4], mut visit: impl FnMut(f64, f64)) {
+        // Only centres within the part's bounds are cut: the box cut to them bounds the loops
+        // by the lenslets on the part, wherever the box lies (a composite term decentred by
+        // 1e308 mm once asked for 2⁶⁴ rows).
+        let (r, part) = (self.max_centre_radius, &self.part);
+        let (x0, x1) = (x0.max(part.x_mm - r), x1.min(part.x_mm + r));
+        let (y0, y1) = (y0.max(part.y_mm - r), y1.min(part.y_mm + r));
+        if !(x0 <= x1 && y0 <= y1) {
+            return;
+        }
         let p = self.spec.pitch_mm;
         let row = row_spacing(self.spec.grid, p);
         for j in ceiling(y0 / row)..=floor(y1 / row) {
@@ -236,17 +250,22 @@ fn row_spacing(grid: Grid, p: f64) -> f64 {
     }
 }
 
-/// ⌊x⌋ for |x| < 2⁶³ by truncation (`f64::floor` is a library call on baseline x86-64, and
-/// the kinks of a section are asked for at every Newton step of the compensation).
+/// ⌊x⌋ for |x| < 2⁶³ by truncation, saturated beyond (`f64::floor` is a library call on
+/// baseline x86-64, and the kinks of a section are asked for at every Newton step of the
+/// compensation).
 fn floor(x: f64) -> i64 {
     let t = x as i64;
-    if t as f64 > x { t - 1 } else { t }
+    if t as f64 > x { t.saturating_sub(1) } else { t }
 }
 
-/// ⌈x⌉ for |x| < 2⁶³ by truncation.
+/// ⌈x⌉ for |x| < 2⁶³ by truncation (saturated beyond).
 fn ceiling(x: f64) -> i64 {
     let t = x as i64;
-    if (t as f64) < x { t + 1 } else { t }
+    if (t as f64) < x {
+        t.saturating_add(1)
+    } else {
+        t
+    }
 }
 
 impl Surface for LensArray {
@@ -556,6 +575,30 @@ mod tests {
             assert_eq!(floor(x) as f64, x.floor(), "{x}");
             assert_eq!(ceiling(x) as f64, x.ceil(), "{x}");
         }
+        // Beyond i64 both saturate (a wrapped floor of −1e308 once made a range of 2⁶⁴ rows).
+        for (x, low) in [(-1e308, i64::MIN), (1e308, i64::MAX), (-1e19, i64::MIN)] {
+            assert_eq!((floor(x), ceiling(x)), (low, low), "{x}");
+        }
+    }
+
+    #[test]
+    fn kinks_of_a_line_far_from_the_part_are_none_and_found_at_once() {
+        let l = LensArray::new(&LensArraySpec::paper004(), PartDisc::centred(5.0)).unwrap();
+        let (s, c) = 0.26f64.sin_cos();
+        for (x0, y0) in [
+            (0.0, -f64::MAX),
+            (f64::MAX, 3.0),
+            (-1e300, 1e300),
+            (40.0, 0.0),
+        ] {
+            let mut kinks = Vec::new();
+            l.slope_kinks(Line { x0, y0, c, s }, 0.0, 10.0, &mut kinks);
+            assert!(kinks.is_empty(), "({x0}, {y0}): {kinks:?}");
+        }
+        // A part narrower than a lenslet cuts none, by the kinks and by the surface alike.
+        let tiny = LensArray::new(&LensArraySpec::paper004(), PartDisc::centred(0.1)).unwrap();
+        assert_eq!(tiny.lenslet_count(), 0);
+        assert_eq!(tiny.local(0.0, 0.0).unwrap().z, 0.0);
     }
 
     #[test]

@@ -147,11 +147,7 @@ impl Asphere {
 
     /// The definition without the family's name: `R 40 mm, k -1.2, A4 1.5e-6` (`plane, k 0`).
     pub fn shape(&self) -> String {
-        let r = if self.c == 0.0 {
-            "plane".to_string()
-        } else {
-            format!("R {} mm", 1.0 / self.c)
-        };
+        let r = radius_words(self.c, "plane");
         let terms: Vec<String> = self
             .a
             .iter()
@@ -250,6 +246,20 @@ impl Surface for Asphere {
 
     fn describe(&self) -> String {
         format!("even asphere {}", self.shape())
+    }
+}
+
+/// "R … mm" for the curvature `c` (1/mm), or `flat` for none; a curvature so small that its
+/// radius is beyond the largest double (a radius of 1.8e308 mm read as 1/R, subnormal) is
+/// named by its curvature rather than printed as an infinite radius.
+pub(crate) fn radius_words(c: f64, flat: &str) -> String {
+    let r = 1.0 / c;
+    if c == 0.0 {
+        flat.to_string()
+    } else if r.is_finite() {
+        format!("R {r} mm")
+    } else {
+        format!("{flat} to within a curvature of {c:e} /mm")
     }
 }
 

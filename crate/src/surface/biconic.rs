@@ -98,11 +98,7 @@ pub(crate) fn section_curvatures(
 
 /// `"R 12 mm"`, or `"flat"` for zero curvature.
 pub(crate) fn describe_radius(c: f64) -> String {
-    if c == 0.0 {
-        "flat".to_string()
-    } else {
-        format!("R {} mm", 1.0 / c)
-    }
+    super::asphere::radius_words(c, "flat")
 }
 
 impl Biconic {
@@ -245,6 +241,23 @@ mod tests {
         );
         // The rim inside the disc: none.
         assert!(conic.section_bounds(15.0 / 1.5f64.sqrt()).is_none());
+    }
+
+    #[test]
+    fn a_radius_whose_curvature_is_subnormal_is_not_described_as_infinite() {
+        let s = biconic(BiconicSpec {
+            radius_x_mm: Some(40.0),
+            radius_y_mm: Some(f64::MAX),
+            ..Default::default()
+        })
+        .unwrap();
+        let text = s.describe();
+        assert!(!text.contains("inf"), "{text}");
+        assert!(
+            text.contains("Y: flat to within a curvature of 5.56"),
+            "{text}"
+        );
+        assert!(text.contains("X: R 40 mm"), "{text}");
     }
 
     #[test]

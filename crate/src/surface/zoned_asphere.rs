@@ -194,13 +194,24 @@ impl ZonedAsphere {
             .enumerate()
             .map(|(k, &r)| {
                 let ((z0, s0), (z1, s1)) = (zones[k].profile(r), zones[k + 1].profile(r));
-                Boundary {
-                    radius_mm: r,
-                    step_mm: z1 - z0,
-                    slope_jump: s1 - s0,
+                let (step_mm, slope_jump) = (z1 - z0, s1 - s0);
+                if !(step_mm.is_finite() && slope_jump.is_finite()) {
+                    return Err(FieldError::new(
+                        format!("zones[{k}].outer_radius_mm"),
+                        r,
+                        format!(
+                            "zones {k} and {} have no finite sag and slope there to join",
+                            k + 1
+                        ),
+                    ));
                 }
+                Ok(Boundary {
+                    radius_mm: r,
+                    step_mm,
+                    slope_jump,
+                })
             })
-            .collect();
+            .collect::<Result<_, _>>()?;
         Ok(Self {
             zones,
             outer,
@@ -500,5 +511,16 @@ mod tests {
         })
         .unwrap_err();
         assert_eq!(e.field, "zones[0].radius_mm");
+        // A boundary where the zones' sags overflow (r² beyond the largest double) gave a step
+        // of NaN in the program's header.
+        let e = ZonedAsphere::new(&ZonedAsphereSpec {
+            zones: vec![
+                zone_spec(Some(2.0), 40.0, -1.0, 0.0),
+                zone_spec(Some(1e300), -1e300, 0.0, 0.0),
+                zone_spec(None, 40.0, -1.0, 0.0),
+            ],
+        })
+        .unwrap_err();
+        assert_eq!(e.field, "zones[1].outer_radius_mm", "{e}");
     }
 }

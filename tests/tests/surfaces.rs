@@ -682,8 +682,8 @@ fn bad_parameters_name_their_field() {
         (
             r#"{"type":"xy_polynomial","base":{"radius_mm":50},"norm_radius_mm":5,
                 "terms":[{"x":6,"y":5,"coefficient_mm":1}]}"#,
-            "surface.terms[0].x + y",
-            "11",
+            "surface.terms[0]",
+            "x6 y5",
         ),
         (
             r#"{"type":"xy_polynomial","base":{"radius_mm":50},"norm_radius_mm":5,

@@ -240,6 +240,12 @@ impl BaseSurface {
             arc_table: Vec::new(),
         };
         base.build_arc_table();
+        // Sags near the largest double fit to infinities, and every later step would be NaN.
+        if !(base.c.iter().all(|v| v.is_finite()) && base.total_arc_length().is_finite()) {
+            return Err(SpaceSpiralError::Fit(
+                "the base curve fitted to the design's sags is not finite (sags too large)".into(),
+            ));
+        }
 
         let (mut sum2, mut max, mut count) = (0.0_f64, 0.0_f64, 0usize);
         for (&rho, zs) in ring_rho.iter().zip(&samples) {
@@ -750,6 +756,17 @@ mod tests {
         let fit = BaseSurface::fit(&s, 5.0, &BaseFitOptions::default()).unwrap();
         let e = space_spiral(&s, &fit.base, 0.0, 16).unwrap_err();
         assert!(e.to_string().starts_with("feed_mm:"));
+        // Sags near the largest double: an error, not a base of infinities (a NaN arc length
+        // once panicked the survey of `spiralcam analyse` in a clamp).
+        let huge = Asphere::new(&AsphereSpec {
+            radius_mm: Some(50.0),
+            coefficients: vec![f64::MAX],
+            ..Default::default()
+        })
+        .unwrap();
+        let e = BaseSurface::fit(&huge, 5.0, &BaseFitOptions::default()).unwrap_err();
+        assert!(matches!(e, SpaceSpiralError::Fit(_)), "{e}");
+        assert!(survey(&huge, 5.0, 0.01).is_err());
     }
 }
 

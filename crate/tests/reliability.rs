@@ -413,3 +413,50 @@ fn messages_name_the_field_in_short_form() {
         stderr(&o)
     );
 }
+
+#[test]
+fn analyse_admits_its_job_like_plan() {
+    // Found by fuzzing `analyse`: it walked a path of overflowing heights for minutes, and any
+    // number of points, where `plan` refuses both at once.
+    let dir = Scratch::new("analyse-admission");
+    let analyse = |job: &Value, extra: &[&str]| {
+        let path = dir.write("job.json", &job.to_string());
+        let mut args = vec!["analyse".to_string(), path.display().to_string()];
+        args.extend(extra.iter().map(|s| s.to_string()));
+        let start = Instant::now();
+        let o = spiralcam(&args);
+        (o.status.code(), stderr(&o), start.elapsed())
+    };
+    let mut job = example("q-bfs");
+    job["surface"]["norm_radius_mm"] = json!(0.0006);
+    let (code, message, took) = analyse(&job, &[]);
+    assert_eq!(code, Some(1), "{message}");
+    assert!(
+        message.contains("spiralcam: surface = a height of"),
+        "{message}"
+    );
+    assert!(took < Duration::from_secs(5), "{took:?}");
+    let mut job = example("asphere-f20");
+    job["strategy"]["feed_mm_per_rev"] = json!(0.00002);
+    let (code, message, took) = analyse(&job, &[]);
+    assert_eq!(code, Some(1), "{message}");
+    assert!(
+        message.contains(
+            "strategy.feed_mm_per_rev = 0.00002: gives about 1.8e8 points; analyse walks at most \
+             30000000 (--max-points raises it): a feed of at least 0.0001200001 mm/rev"
+        ),
+        "{message}"
+    );
+    assert!(took < Duration::from_secs(5), "{took:?}");
+    // The limit is the command line's: 720 001 points refused under 100, walked by default.
+    let job = example("asphere-f20");
+    let (code, message, _) = analyse(&job, &["--max-points", "100"]);
+    assert_eq!(code, Some(1), "{message}");
+    assert!(
+        message.contains("gives about 720001 points; analyse walks at most 100"),
+        "{message}"
+    );
+    let report = dir.path("r.json").display().to_string();
+    let (code, message, _) = analyse(&job, &["--report", &report]);
+    assert_eq!(code, Some(0), "{message}");
+}

@@ -1,12 +1,14 @@
 //! A fuzz harness over the command line (issue 11): the example jobs, mutated (numbers to
 //! extremes, subnormals, huge and tiny values, wrong types, missing and unknown fields), each
 //! planned by `spiralcam plan` with its outputs and bounds (`--max-points`, `--max-seconds`,
-//! `--max-output-gb`). Every case must end in a few seconds with exit 0 (the files written,
-//! no NaN or infinity in them) or exit 1 with a message naming a field of the job or a file,
-//! and leave nothing behind but the files it was asked for.
+//! `--max-output-gb`), and analysed by `spiralcam analyse` under the same point and time limits. Every
+//! case must end in a few seconds with exit 0 (the files written, no NaN or infinity in them)
+//! or exit 1 with a message naming a field of the job or a file, and leave nothing behind but
+//! the files it was asked for.
 //!
-//! A fixed budget runs in the test command (`SPIRALCAM_FUZZ_CASES`, default 64 cases, seed
-//! `SPIRALCAM_FUZZ_SEED`, default 11); set them to run longer. The slowest case is printed.
+//! A fixed budget runs in the test command (`SPIRALCAM_FUZZ_CASES`, default 64 cases planned
+//! and 32 analysed, seed `SPIRALCAM_FUZZ_SEED`, default 11); set them to run longer. The
+//! slowest case is printed.
 
 mod common;
 
@@ -208,21 +210,62 @@ struct Case {
     message: String,
 }
 
-/// Plans one mutated job in `dir`; checks what it leaves and returns what happened.
-fn run_case(dir: &Scratch, job: &Value, what: String) -> Case {
+/// The command a case runs: `plan` with its three outputs under [`BOUNDS`], or `analyse` with
+/// its report under the same point and time limits.
+#[derive(Clone, Copy, PartialEq)]
+enum Run {
+    Plan,
+    Analyse,
+}
+
+impl Run {
+    /// The files a successful run writes, in name order.
+    fn outputs(self) -> &'static [&'static str] {
+        match self {
+            Run::Plan => &["out.csv", "out.nc", "rep.json"],
+            Run::Analyse => &["rep.json"],
+        }
+    }
+
+    fn args(self, out: impl Fn(&str) -> PathBuf) -> Vec<String> {
+        let path = |f: &str| out(f).display().to_string();
+        match self {
+            Run::Plan => {
+                let mut a = Vec::new();
+                for (flag, f) in [
+                    ("--nc", "out.nc"),
+                    ("--csv", "out.csv"),
+                    ("--report", "rep.json"),
+                ] {
+                    a.extend([flag.to_string(), path(f)]);
+                }
+                a.extend(BOUNDS.iter().map(|b| b.to_string()));
+                a
+            }
+            Run::Analyse => vec![
+                "--report".into(),
+                path("rep.json"),
+                "--max-points".into(),
+                BOUNDS[1].into(),
+                "--max-seconds".into(),
+                BOUNDS[3].into(),
+            ],
+        }
+    }
+}
+
+/// Runs one mutated job in `dir`; checks what it leaves and returns what happened.
+fn run_case(dir: &Scratch, job: &Value, what: String, run: Run) -> Case {
     let job_path = dir.write("job.json", &job.to_string());
     let out = |f: &str| dir.path(f);
     let start = Instant::now();
     let mut child = Command::new(env!("CARGO_BIN_EXE_spiralcam"))
-        .arg("plan")
+        .arg(match run {
+            Run::Plan => "plan",
+            Run::Analyse => "analyse",
+        })
         .arg(&job_path)
-        .args(
-            ["--nc", "--csv", "--report"]
-                .iter()
-                .zip(["out.nc", "out.csv", "rep.json"])
-                .flat_map(|(flag, f)| [flag.to_string(), out(f).display().to_string()]),
-        )
-        .args(BOUNDS)
+        .args(run.args(out))
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
@@ -245,20 +288,24 @@ fn run_case(dir: &Scratch, job: &Value, what: String) -> Case {
     files.retain(|f| f != "job.json" && !is_data_file(f));
     match code {
         Some(0) => {
-            assert_eq!(
-                files,
-                ["out.csv", "out.nc", "rep.json"],
-                "{what}: {message}"
-            );
-            for f in ["out.nc", "out.csv"] {
+            assert_eq!(files, run.outputs(), "{what}: {message}");
+            for f in ["out.nc", "out.csv"]
+                .into_iter()
+                .filter(|_| run == Run::Plan)
+            {
                 let text = std::fs::read_to_string(out(f)).unwrap();
                 let bad = text.contains("NaN") || text.contains("inf");
                 assert!(!bad, "{what}: {f} holds a non-finite number");
             }
             let report: Value =
                 serde_json::from_str(&std::fs::read_to_string(out("rep.json")).unwrap()).unwrap();
-            assert!(report["points"].as_u64().is_some_and(|n| n >= 2), "{what}");
-            for f in ["out.nc", "out.csv", "rep.json"] {
+            match run {
+                Run::Plan => {
+                    assert!(report["points"].as_u64().is_some_and(|n| n >= 2), "{what}")
+                }
+                Run::Analyse => assert!(report["linearization"].is_object(), "{what}"),
+            }
+            for f in run.outputs() {
                 std::fs::remove_file(out(f)).unwrap();
             }
         }
@@ -283,10 +330,25 @@ fn is_data_file(name: &str) -> bool {
 
 #[test]
 fn mutated_example_jobs_end_quickly_and_cleanly() {
-    let cases = env_number("SPIRALCAM_FUZZ_CASES", 64);
+    fuzz(Run::Plan, 64);
+}
+
+/// `analyse` of the same mutations (it once walked a path of overflowing heights for minutes:
+/// it admits its job as `plan` does now).
+#[test]
+fn mutated_example_jobs_are_analysed_quickly_and_cleanly() {
+    fuzz(Run::Analyse, 32);
+}
+
+/// Runs `SPIRALCAM_FUZZ_CASES` (default `default_cases`) mutated example jobs through `run`.
+fn fuzz(run: Run, default_cases: u64) {
+    let cases = env_number("SPIRALCAM_FUZZ_CASES", default_cases);
     let mut rng = Rng(env_number("SPIRALCAM_FUZZ_SEED", 11));
     let examples = examples();
-    let dir = Scratch::new("fuzz");
+    let dir = Scratch::new(match run {
+        Run::Plan => "fuzz-plan",
+        Run::Analyse => "fuzz-analyse",
+    });
     for data in std::fs::read_dir(jobs_dir()).unwrap() {
         let p = data.unwrap().path();
         if p.extension().is_some_and(|e| e == "csv" || e == "step") {
@@ -312,6 +374,7 @@ fn mutated_example_jobs_end_quickly_and_cleanly() {
             &dir,
             &job,
             format!("case {k}, {name}: {}", said.join("; ")),
+            run,
         ));
     }
     let planned = done.iter().filter(|c| c.code == Some(0)).count();
@@ -336,7 +399,7 @@ fn mutated_example_jobs_end_quickly_and_cleanly() {
     println!("refusals by what they name: {named:?}");
     let slowest = done.iter().max_by_key(|c| c.took).unwrap();
     println!(
-        "{} cases: {planned} planned, {} refused naming a field; slowest {:.2} s ({}; {})",
+        "{} cases: {planned} done, {} refused naming a field; slowest {:.2} s ({}; {})",
         done.len(),
         done.len() - planned,
         slowest.took.as_secs_f64(),

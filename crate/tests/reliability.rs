@@ -456,6 +456,19 @@ fn analyse_admits_its_job_like_plan() {
         message.contains("gives about 720001 points; analyse walks at most 100"),
         "{message}"
     );
+    // A surface whose features are far below the nose: 8 samples a feature between points.
+    let mut fine = example("composite-asphere-lenslets");
+    fine["strategy"]["feed_mm_per_rev"] = json!(0.6);
+    fine["surface"]["terms"][1]["surface"]["wavelength_x_mm"] = json!(0.00025);
+    let (code, message, took) = analyse(&fine, &[]);
+    assert_eq!(code, Some(1), "{message}");
+    assert!(
+        message.contains(
+            "samples between them for the accuracy checks (8 a feature length of 6.25e-5 mm)"
+        ) && message.contains("above the limit of 600 s (--max-seconds raises it)"),
+        "{message}"
+    );
+    assert!(took < Duration::from_secs(5), "{took:?}");
     let report = dir.path("r.json").display().to_string();
     let (code, message, _) = analyse(&job, &["--report", &report]);
     assert_eq!(code, Some(0), "{message}");

@@ -90,7 +90,7 @@ pub const MIN_INTERVALS: usize = 4;
 /// Most sample intervals per segment.
 pub const MAX_INTERVALS: usize = 4096;
 /// Sample intervals per feature length along the contact's path.
-const INTERVALS_PER_FEATURE: f64 = 8.0;
+pub const INTERVALS_PER_FEATURE: f64 = 8.0;
 /// Largest Δθ of one sample interval, radians (15°).
 const MAX_ANGLE_STEP: f64 = std::f64::consts::PI / 12.0;
 /// Tolerance, radians, of "the contact sits at this end of the arc".
@@ -749,6 +749,23 @@ impl LinearizationCheck {
             },
             map: self.map,
         }
+    }
+}
+
+/// About how many sample intervals the check takes along the `points` points of `path`, for an
+/// estimate of its time before it runs: per segment at least [`MIN_INTERVALS`], at most
+/// [`MAX_INTERVALS`], and [`INTERVALS_PER_FEATURE`] a feature length of the contact's path,
+/// whose length is taken as the spiral's, π·R²/f (R the radius it starts at, f the feed).
+pub fn estimated_intervals(path: &ToolPath, points: u64) -> f64 {
+    let r = path.spiral().start_radius_mm();
+    let length = std::f64::consts::PI * r * r / path.job().strategy.feed_mm_per_rev;
+    let by_feature = length / path.surface().feature_length_mm() * INTERVALS_PER_FEATURE;
+    let n = points as f64;
+    let (least, most) = (MIN_INTERVALS as f64 * n, MAX_INTERVALS as f64 * n);
+    if by_feature.is_nan() {
+        most
+    } else {
+        by_feature.clamp(least, most)
     }
 }
 

@@ -3,15 +3,18 @@
 use crate::files::{OutputFile, Target, check_targets, write_file};
 use crate::{Failure, bar, read_job, run_err};
 use spiralcam::analysis::Analysis;
+use spiralcam::analysis::linearization::estimated_intervals;
 use spiralcam::field::{FieldError, short};
 use spiralcam::path::MAX_POINTS;
 use spiralcam::plan::{PlanError, Planner};
 use spiralcam::raster::Raster;
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::time::Instant;
 
 /// The command's help.
 pub const HELP: &str = "spiralcam analyse JOB.json [--report FILE] [--maps PREFIX] [--max-points N]
+                         [--max-seconds S]
 
 Plans the job and reports the accuracy of its path as JSON (standard output when --report
 is not given): the linearization error between NC points, the predicted machined form, the
@@ -19,13 +22,17 @@ tool angles the surface needs and how far it is from a surface of revolution. --
 PREFIX-linearization.csv, PREFIX-form.csv (x_mm,y_mm,error_um) and PREFIX-clearance.csv
 (x_mm,y_mm,required_clearance_deg), 256 x 256 over the part.
 
-The job is admitted first, as by plan: heights checked at probes along the path, and at most
+The job is admitted first, as by plan: heights checked at probes along the path, at most
 30 000 000 points walked (about half a minute on two cores for an asphere) unless
---max-points says otherwise.";
+--max-points says otherwise, and at most 600 s of estimated time (the samples between points
+follow the surface's feature length) unless --max-seconds says otherwise.";
 
 /// The most points `analyse` walks unless `--max-points` says otherwise: a 28.4 M-point
 /// finishing path, about half a minute on two cores for an asphere (1 µs a point).
 pub const DEFAULT_MAX_POINTS: u64 = 30_000_000;
+
+/// The longest estimated analysis `analyse` starts unless `--max-seconds` says otherwise.
+pub const DEFAULT_MAX_SECONDS: f64 = 600.0;
 
 /// Samples per side of the maps `analyse --maps` writes.
 const MAP_SIZE: usize = 256;
@@ -38,10 +45,16 @@ const MAPS: [(&str, &str); 3] = [
 ];
 
 pub fn run(words: &[String]) -> Result<(), Failure> {
-    let args = crate::args::parse(words, &["--report", "--maps", "--max-points"])?;
+    let args = crate::args::parse(
+        words,
+        &["--report", "--maps", "--max-points", "--max-seconds"],
+    )?;
     let max_points = args
         .positive("--max-points")?
         .map_or(DEFAULT_MAX_POINTS, |n| (n as u64).min(MAX_POINTS));
+    let max_seconds = args
+        .positive("--max-seconds")?
+        .unwrap_or(DEFAULT_MAX_SECONDS);
     let map_path = |suffix: &str| {
         args.path("--maps").map(|prefix| {
             let mut p = prefix.as_os_str().to_owned();
@@ -69,7 +82,7 @@ pub fn run(words: &[String]) -> Result<(), Failure> {
     check_targets(&targets, &inputs)?;
     let mut progress = bar::callback();
     let planner = Planner::with_progress(&job, &mut progress).map_err(run_err)?;
-    admit(&planner, max_points).map_err(run_err)?;
+    admit(&planner, max_points, max_seconds).map_err(run_err)?;
     let analysis = Analysis::run(&planner, MAP_SIZE, &mut progress);
     bar::end();
     let analysis = analysis.map_err(run_err)?;
@@ -99,25 +112,50 @@ pub fn run(words: &[String]) -> Result<(), Failure> {
 
 /// Admits the job as `plan` does before walking it ([`Planner::cost`]: the surface defined and
 /// its heights finite and within reach at probes along the path), and refuses more than
-/// `max_points` points, naming the feed that would do.
-fn admit(planner: &Planner, max_points: u64) -> Result<(), PlanError> {
-    let cost = planner.cost(None)?;
-    if cost.points <= max_points {
-        return Ok(());
-    }
+/// `max_points` points or an estimated time above `max_seconds`, naming the feed that would do
+/// (points and samples both go as 1/f). The time is the plan's per point, timed at the probes,
+/// times the samples the accuracy checks take
+/// ([`spiralcam::analysis::linearization::estimated_intervals`]).
+fn admit(planner: &Planner, max_points: u64, max_seconds: f64) -> Result<(), PlanError> {
+    let start = Instant::now();
+    let clock = move || start.elapsed().as_secs_f64();
+    let cost = planner.cost(Some(&clock))?;
     let feed = planner.job().strategy.feed_mm_per_rev;
-    let ratio = cost.points as f64 / max_points as f64;
-    Err(FieldError::new(
-        "strategy.feed_mm_per_rev",
-        feed,
-        format!(
-            "gives about {} points; analyse walks at most {max_points} (--max-points raises \
-             it): a feed of at least {} mm/rev keeps the path under it",
-            short(cost.points as f64),
-            short(feed * ratio * (1.0 + 1e-6))
-        ),
-    )
-    .into())
+    let points = cost.points as f64;
+    let refuse = |ratio: f64, what: String| -> Result<(), PlanError> {
+        Err(FieldError::new(
+            "strategy.feed_mm_per_rev",
+            feed,
+            format!(
+                "{what}: a feed of at least {} mm/rev keeps it under",
+                short(feed * ratio * (1.0 + 1e-6))
+            ),
+        )
+        .into())
+    };
+    if cost.points > max_points {
+        let what = format!(
+            "gives about {} points; analyse walks at most {max_points} (--max-points raises it)",
+            short(points)
+        );
+        return refuse(points / max_points as f64, what);
+    }
+    let per_point = cost.seconds.unwrap_or(0.0) / points.max(1.0);
+    let samples = estimated_intervals(planner, cost.points);
+    let seconds = per_point * samples;
+    if seconds > max_seconds {
+        let what = format!(
+            "gives about {} points and {} samples between them for the accuracy checks (8 a \
+             feature length of {} mm), about {:.0} s to analyse, above the limit of {max_seconds} \
+             s (--max-seconds raises it)",
+            short(points),
+            short(samples),
+            short(planner.surface().feature_length_mm()),
+            seconds
+        );
+        return refuse(seconds / max_seconds, what);
+    }
+    Ok(())
 }
 
 /// Writes the defined samples of `map` as `x_mm,y_mm,<value>` rows, not yet renamed.

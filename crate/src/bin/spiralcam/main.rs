@@ -3,7 +3,7 @@
 //! ```text
 //! spiralcam plan JOB.json [--nc FILE] [--csv FILE] [--fts-csv FILE] [--fts-table FILE]
 //!                         [--report FILE] [--max-output-gb G] [--max-points N] [--max-seconds S]
-//! spiralcam analyse JOB.json [--report FILE] [--maps PREFIX] [--max-points N]
+//! spiralcam analyse JOB.json [--report FILE] [--maps PREFIX] [--max-points N] [--max-seconds S]
 //! spiralcam sag JOB.json --at POINTS.csv
 //! spiralcam import DESIGN [--surface N] [--cut optic|mould] [--diameter-mm D] --out JOB.json
 //! spiralcam export-grid JOB.json --nx N --ny N --out FILE.DAT [--half-width-mm W]
@@ -42,7 +42,7 @@ use std::process::ExitCode;
 const USAGE: &str = "usage:
   spiralcam plan JOB.json [--nc FILE] [--csv FILE] [--fts-csv FILE] [--fts-table FILE]
                           [--report FILE] [--max-output-gb G] [--max-points N] [--max-seconds S]
-  spiralcam analyse JOB.json [--report FILE] [--maps PREFIX] [--max-points N]
+  spiralcam analyse JOB.json [--report FILE] [--maps PREFIX] [--max-points N] [--max-seconds S]
   spiralcam sag JOB.json --at POINTS.csv
   spiralcam import DESIGN [--surface N] [--cut optic|mould] [--diameter-mm D] --out JOB.json
   spiralcam export-grid JOB.json --nx N --ny N --out FILE.DAT [--half-width-mm W]

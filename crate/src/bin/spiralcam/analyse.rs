@@ -3,7 +3,7 @@
 use crate::files::{OutputFile, Target, check_targets, write_file};
 use crate::{Failure, bar, read_job, run_err};
 use spiralcam::analysis::Analysis;
-use spiralcam::analysis::linearization::estimated_intervals;
+use spiralcam::analysis::linearization::{INTERVALS_PER_FEATURE, estimated_intervals};
 use spiralcam::field::{FieldError, short};
 use spiralcam::path::MAX_POINTS;
 use spiralcam::plan::{PlanError, Planner};
@@ -145,8 +145,8 @@ fn admit(planner: &Planner, max_points: u64, max_seconds: f64) -> Result<(), Pla
     let seconds = per_point * samples;
     if seconds > max_seconds {
         let what = format!(
-            "gives about {} points and {} samples between them for the accuracy checks (8 a \
-             feature length of {} mm), about {:.0} s to analyse, above the limit of {max_seconds} \
+            "gives about {} points and {} samples between them for the accuracy checks \
+             ({INTERVALS_PER_FEATURE} a feature length of {} mm), about {:.0} s to analyse, above the limit of {max_seconds} \
              s (--max-seconds raises it)",
             short(points),
             short(samples),

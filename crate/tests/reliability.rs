@@ -456,19 +456,33 @@ fn analyse_admits_its_job_like_plan() {
         message.contains("gives about 720001 points; analyse walks at most 100"),
         "{message}"
     );
-    // A surface whose features are far below the nose: 8 samples a feature between points.
+    // A surface whose features are far below the nose: 8 samples a feature between points,
+    // 4096 a segment (hours).
     let mut fine = example("composite-asphere-lenslets");
     fine["strategy"]["feed_mm_per_rev"] = json!(0.6);
     fine["surface"]["terms"][1]["surface"]["wavelength_x_mm"] = json!(0.00025);
     let (code, message, took) = analyse(&fine, &[]);
     assert_eq!(code, Some(1), "{message}");
     assert!(
-        message.contains(
-            "samples between them for the accuracy checks (8 a feature length of 6.25e-5 mm)"
-        ) && message.contains("above the limit of 600 s (--max-seconds raises it)"),
+        message.contains("8 samples a feature length of 6.25e-5 mm or more")
+            && message.contains(" h to analyse on ")
+            && message.contains("above the limit of 600 s (--max-seconds raises it)"),
         "{message}"
     );
-    assert!(took < Duration::from_secs(5), "{took:?}");
+    assert!(took < Duration::from_secs(15), "{took:?}");
+    // Scattered data, whose samples between points each walk their own line: about 230 s on
+    // two cores, which the plan's time per point put at 4 s; the segments' checks are timed.
+    let mut scattered = example("scattered-lens-array");
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("jobs/scattered-lens-array.csv");
+    scattered["surface"]["data"]["path"] = json!(data);
+    let (code, message, took) = analyse(&scattered, &["--max-seconds", "30"]);
+    assert_eq!(code, Some(1), "{message}");
+    assert!(
+        message.contains("gives about 180001 points, about ")
+            && message.contains("timed at 16 places along the path), above the limit of 30 s"),
+        "{message}"
+    );
+    assert!(took < Duration::from_secs(10), "{took:?}");
     let report = dir.path("r.json").display().to_string();
     let (code, message, _) = analyse(&job, &["--report", &report]);
     assert_eq!(code, Some(0), "{message}");

@@ -752,23 +752,6 @@ impl LinearizationCheck {
     }
 }
 
-/// About how many sample intervals the check takes along the `points` points of `path`, for an
-/// estimate of its time before it runs: per segment at least [`MIN_INTERVALS`], at most
-/// [`MAX_INTERVALS`], and [`INTERVALS_PER_FEATURE`] a feature length of the contact's path,
-/// whose length is taken as the spiral's, π·R²/f (R the radius it starts at, f the feed).
-pub fn estimated_intervals(path: &ToolPath, points: u64) -> f64 {
-    let r = path.spiral().start_radius_mm();
-    let length = std::f64::consts::PI * r * r / path.job().strategy.feed_mm_per_rev;
-    let by_feature = length / path.surface().feature_length_mm() * INTERVALS_PER_FEATURE;
-    let n = points as f64;
-    let (least, most) = (MIN_INTERVALS as f64 * n, MAX_INTERVALS as f64 * n);
-    if by_feature.is_nan() {
-        most
-    } else {
-        by_feature.clamp(least, most)
-    }
-}
-
 /// Checks the whole path of `tool_path`, mapped on a `map_size` raster; `progress` gets the points
 /// done every [`PROGRESS_EVERY`] points and at the end.
 pub fn analyse(

@@ -104,4 +104,28 @@ describe('pkg/spiralcam.js in the browser', () => {
     }, job);
     assert.equal(message, 'tool.nose_radius_mm = -1: must be a finite number ≥ 0');
   });
+
+  test('a job of the wrong shape rejects with the command line\'s words', async () => {
+    // Read field by field from the object, a number for the surface said "TypeError:
+    // Reflect.get called on non-object", and 1e300 was written out in 301 digits.
+    const messages = await page.evaluate(async (j) => {
+      const api = await import('/pkg/spiralcam.js');
+      const out = [];
+      for (const [section, value] of [['surface', 2.5], ['machine', 1e300]]) {
+        const bad = structuredClone(j);
+        bad[section] = value;
+        try {
+          await api.plan(bad);
+          out.push('resolved');
+        } catch (e) {
+          out.push(e.message);
+        }
+      }
+      return out;
+    }, job);
+    assert.deepEqual(messages, [
+      'job: surface: invalid type: floating point `2.5`, expected a surface: an object whose "type" names its family',
+      'job: machine: invalid type: floating point `1e+300`, expected struct MachineSpec',
+    ]);
+  });
 });

@@ -48,19 +48,31 @@ pub fn version() -> String {
     env!("CARGO_PKG_VERSION").to_string()
 }
 
-/// The job of a JavaScript object, read with the core's field checks.
-/// The job's `format` is checked first: a job from a newer spiralcam is refused naming its
-/// version, not the first field this version does not know.
+/// The job of a JavaScript object, read as the command line reads a job file: through its JSON
+/// text ([`Job::from_json`]: the format first, so that a job from a newer spiralcam is refused
+/// naming its version, then every field), so that a bad job gets the command line's message
+/// (read field by field from the object, a number where an object belongs gave "TypeError:
+/// Reflect.get called on non-object", and 1e300 was written with all its 301 digits), less the
+/// text's line and column, which the page's user never sees.
 pub(crate) fn parse_job(job: JsValue) -> Result<Job, JsError> {
-    let format =
-        js_sys::Reflect::get(&job, &JsValue::from_str("format")).unwrap_or(JsValue::UNDEFINED);
-    if !format.is_undefined() {
-        let value: serde_json::Value = serde_wasm_bindgen::from_value(format)
-            .unwrap_or_else(|_| serde_json::Value::String("an object".into()));
-        spiralcam::job::format::check_format(&value).map_err(|e| JsError::new(&e.to_string()))?;
+    let text = js_sys::JSON::stringify(&job)
+        .ok()
+        .and_then(|t| t.as_string())
+        .ok_or_else(|| JsError::new("job: must be a JSON object {…}"))?;
+    Job::from_json(&text).map_err(|e| JsError::new(without_position(&e.to_string())))
+}
+
+/// `message` without the " at line L column C" that a JSON reader puts at its end.
+fn without_position(message: &str) -> &str {
+    const AT: &str = " at line ";
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    match message.rfind(AT) {
+        Some(i) => match message[i + AT.len()..].split_once(" column ") {
+            Some((line, column)) if digits(line) && digits(column) => &message[..i],
+            _ => message,
+        },
+        None => message,
     }
-    Job::deserialize_from(serde_wasm_bindgen::Deserializer::from(job))
-        .map_err(|e| JsError::new(&e.to_string()))
 }
 
 fn read_job(job: JsValue, progress: &js_sys::Function) -> Result<Planner, JsError> {
@@ -780,4 +792,27 @@ pub fn sag(job: JsValue, xy: &[f64]) -> Result<Vec<f64>, JsError> {
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_position_in_the_page_s_json_text_is_left_out() {
+        assert_eq!(
+            without_position(
+                "job: surface: invalid type: floating point `2.5`, expected a surface at line 1 column 69"
+            ),
+            "job: surface: invalid type: floating point `2.5`, expected a surface"
+        );
+        // Only a position at the end, in digits.
+        for kept in [
+            "job: name: a name at line 3",
+            "job: a cut at line 1 column x",
+            "part.diameter_mm = -1: must be a finite number > 0",
+        ] {
+            assert_eq!(without_position(kept), kept);
+        }
+    }
 }

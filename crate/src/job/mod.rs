@@ -45,6 +45,10 @@ use thiserror::Error;
 /// The longest job name: it names the output files and is written into the program's header.
 pub const MAX_NAME_CHARS: usize = 128;
 
+/// The largest part diameter accepted, mm (10 m): beyond every machine, and small enough that a
+/// path's point count, sags and probes stay finite numbers.
+pub const MAX_PART_DIAMETER_MM: f64 = 10_000.0;
+
 /// The example job for the paper 004 lens array, planned by the page on load.
 pub const DEFAULT_JOB: &str = include_str!("../../jobs/lens-array-paper004.json");
 
@@ -348,6 +352,17 @@ impl Job {
             .into());
         }
         positive("part.diameter_mm", self.part.diameter_mm)?;
+        if self.part.diameter_mm > MAX_PART_DIAMETER_MM {
+            return Err(FieldError::new(
+                "part.diameter_mm",
+                self.part.diameter_mm,
+                format!(
+                    "must be at most {MAX_PART_DIAMETER_MM} mm (the largest diamond-turning \
+                     machines swing about 2 m)"
+                ),
+            )
+            .into());
+        }
         let r = self.tool.nose_radius_mm;
         if r > self.part.diameter_mm {
             return Err(FieldError::new(
@@ -563,6 +578,22 @@ mod tests {
             e.starts_with("job: surface: unknown variant `torus`"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn a_part_beyond_every_machine_is_refused_by_its_diameter() {
+        // Found from outside: 1.8e308 mm was refused by the feed ("inf points").
+        let mut job = Job::default_job();
+        job.part.diameter_mm = MAX_PART_DIAMETER_MM;
+        job.validate().unwrap();
+        for d in [MAX_PART_DIAMETER_MM * (1.0 + 1e-15), f64::MAX] {
+            job.part.diameter_mm = d;
+            let e = job.validate().unwrap_err().to_string();
+            assert!(
+                e.starts_with("part.diameter_mm = ") && e.contains("must be at most 10000 mm"),
+                "{e}"
+            );
+        }
     }
 
     #[test]

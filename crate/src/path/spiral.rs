@@ -333,15 +333,43 @@ impl Spiral {
         };
         let points = spiral.point_count_estimate();
         if points.is_nan() || points > MAX_POINTS as f64 {
-            // The count goes as 1/f for every sampling: the feed that keeps it under the cap.
-            let least = feed * points / MAX_POINTS as f64 * (1.0 + 1e-6);
+            // The count goes as 1/f for every sampling: the feed that keeps it under the cap,
+            // from the count at a feed of the part's radius where this one overflows.
+            let (f, n) = match points.is_finite() {
+                true => (feed, points),
+                false => {
+                    let wide = Self {
+                        feed: outer_radius,
+                        ..spiral.clone()
+                    };
+                    (outer_radius, wide.point_count_estimate())
+                }
+            };
+            let least = f * n / MAX_POINTS as f64 * (1.0 + 1e-6);
+            if !least.is_finite() {
+                // No feed helps: the sampling's own step is too small to count its points.
+                let (field, value) = match sampling {
+                    Sampling::ConstantArc { arc_length_mm, .. } => {
+                        ("sampling.arc_length_mm", arc_length_mm.to_string())
+                    }
+                    _ => ("sampling", "its steps".to_string()),
+                };
+                return Err(FieldError::new(
+                    field,
+                    value,
+                    "gives more points than can be counted, whatever the feed: a far longer step",
+                ));
+            }
             return Err(FieldError::new(
                 "feed_mm_per_rev",
                 feed,
                 format!(
-                    "gives about {} points with this sampling; at most {MAX_POINTS:.0e} are \
-                     planned: a feed of at least {} mm/rev keeps this part under the limit",
-                    crate::field::short(points),
+                    "gives {} with this sampling; at most {MAX_POINTS:.0e} are planned: a feed of \
+                     at least {} mm/rev keeps this part under the limit",
+                    match points.is_finite() {
+                        true => format!("about {} points", crate::field::short(points)),
+                        false => "more points than can be counted".to_string(),
+                    },
                     crate::field::short(least),
                 ),
             ));
@@ -880,5 +908,32 @@ mod tests {
             max_angle_step_deg: 1.0,
         };
         assert!(Spiral::new(10.0, 0.01, &s, Direction::Ccw, 0.0).is_err());
+    }
+
+    #[test]
+    fn counts_past_the_largest_double_suggest_a_finite_feed_or_name_the_step() {
+        // Found from outside: a feed of 5e-324 mm/rev (or a part of 1.8e308 mm) counted infinite
+        // points and suggested "a feed of at least inf mm/rev". 10 mm at 100 points a turn:
+        // 10 mm × 100 / 1e9 = 1e-6 mm/rev, counted here at a feed of 10 mm (101 points).
+        let s = Sampling::ConstantAngle {
+            points_per_rev: 100,
+        };
+        let e = Spiral::new(10.0, 5e-324, &s, Direction::Ccw, 0.0).unwrap_err();
+        assert_eq!(e.field, "feed_mm_per_rev");
+        assert!(
+            e.allowed.starts_with(
+                "gives more points than can be counted with this sampling; at most 1e9 are \
+                 planned: a feed of at least 1.010001e-6 mm/rev"
+            ),
+            "{e}"
+        );
+        // An arc step that no feed helps names itself.
+        let s = Sampling::ConstantArc {
+            arc_length_mm: 5e-324,
+            max_angle_step_deg: 1.0,
+        };
+        let e = Spiral::new(10.0, 0.01, &s, Direction::Ccw, 0.0).unwrap_err();
+        assert_eq!(e.field, "sampling.arc_length_mm", "{e}");
+        assert!(e.allowed.contains("whatever the feed"), "{e}");
     }
 }

@@ -264,7 +264,9 @@ export class Viewer {
 
 /**
  * Plans `job` and analyses its accuracy (linearization error, predicted form) with maps of
- * `size` × `size` samples, the same figures `spiralcam analyse` prints.
+ * `size` × `size` samples, the same figures `spiralcam analyse` prints; admitted first as
+ * `spiralcam analyse` admits it, with its default limits ([`AnalysisLimits`]), timed by the
+ * worker's clock.
  */
 export function analyse(job: any, size: number, progress: Function): Accuracy;
 

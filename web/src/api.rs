@@ -19,7 +19,7 @@ use spiralcam::display::{DisplayPath, SurfaceMesh};
 use spiralcam::field::short;
 use spiralcam::job::Job;
 use spiralcam::nc::program::ChildFiles;
-use spiralcam::plan::{Limits, PlanSlice, Planner, Sinks};
+use spiralcam::plan::{AnalysisLimits, Limits, PlanSlice, Planner, Sinks};
 use spiralcam::progress::Progress;
 use spiralcam::raster::Raster;
 use spiralcam::report::{Cost, Outputs, Stats};
@@ -628,7 +628,9 @@ impl Accuracy {
 }
 
 /// Plans `job` and analyses its accuracy (linearization error, predicted form) with maps of
-/// `size` × `size` samples, the same figures `spiralcam analyse` prints.
+/// `size` × `size` samples, the same figures `spiralcam analyse` prints; admitted first as
+/// `spiralcam analyse` admits it, with its default limits ([`AnalysisLimits`]), timed by the
+/// worker's clock.
 #[wasm_bindgen]
 pub fn analyse(
     job: JsValue,
@@ -636,6 +638,14 @@ pub fn analyse(
     progress: &js_sys::Function,
 ) -> Result<Accuracy, JsError> {
     let planner = read_job(job, progress)?;
+    planner
+        .admit_analysis(AnalysisLimits::default(), &|| js_sys::Date::now() / 1e3)
+        .map_err(|e| {
+            JsError::new(&format!(
+                "{e} (the page analyses as the command line does by default; \
+                 `spiralcam analyse` takes --max-points and --max-seconds)"
+            ))
+        })?;
     let analysis = Analysis::run(&planner, size, &mut reporter(progress))
         .map_err(|e| JsError::new(&e.to_string()))?;
     Ok(Accuracy { analysis })

@@ -9,10 +9,12 @@
 //! program, report and drawing ([`PlanSlice`], the page's workers).
 
 pub mod admission;
+pub mod analysis_admission;
 mod program;
 mod slice;
 
 pub use admission::Limits;
+pub use analysis_admission::AnalysisLimits;
 pub use slice::PlanSlice;
 
 use crate::display::DisplayPath;

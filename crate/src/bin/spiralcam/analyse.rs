@@ -3,13 +3,9 @@
 use crate::files::{OutputFile, Target, check_targets, write_file};
 use crate::{Failure, bar, read_job, run_err};
 use spiralcam::analysis::Analysis;
-use spiralcam::analysis::linearization::{INTERVALS_PER_FEATURE, segment_error};
-use spiralcam::field::{FieldError, short};
-use spiralcam::parallel::workers;
 use spiralcam::path::MAX_POINTS;
-use spiralcam::plan::{PlanError, Planner};
+use spiralcam::plan::{AnalysisLimits, Planner};
 use spiralcam::raster::Raster;
-use spiralcam::report::duration;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -29,13 +25,6 @@ The job is admitted first, as by plan: heights checked at probes along the path,
 --max-points says otherwise, and at most 600 s of estimated time (the checks between two
 points timed at places along the path) unless --max-seconds says otherwise.";
 
-/// The most points `analyse` walks unless `--max-points` says otherwise: a 28.4 M-point
-/// finishing path, about half a minute on two cores for an asphere (1 µs a point).
-pub const DEFAULT_MAX_POINTS: u64 = 30_000_000;
-
-/// The longest estimated analysis `analyse` starts unless `--max-seconds` says otherwise.
-pub const DEFAULT_MAX_SECONDS: f64 = 600.0;
-
 /// Samples per side of the maps `analyse --maps` writes.
 const MAP_SIZE: usize = 256;
 
@@ -53,10 +42,12 @@ pub fn run(words: &[String]) -> Result<(), Failure> {
     )?;
     let max_points = args
         .positive("--max-points")?
-        .map_or(DEFAULT_MAX_POINTS, |n| (n as u64).min(MAX_POINTS));
+        .map_or(AnalysisLimits::default().max_points, |n| {
+            (n as u64).min(MAX_POINTS)
+        });
     let max_seconds = args
         .positive("--max-seconds")?
-        .unwrap_or(DEFAULT_MAX_SECONDS);
+        .unwrap_or(AnalysisLimits::default().max_seconds);
     let map_path = |suffix: &str| {
         args.path("--maps").map(|prefix| {
             let mut p = prefix.as_os_str().to_owned();
@@ -84,7 +75,14 @@ pub fn run(words: &[String]) -> Result<(), Failure> {
     check_targets(&targets, &inputs)?;
     let mut progress = bar::callback();
     let planner = Planner::with_progress(&job, &mut progress).map_err(run_err)?;
-    admit(&planner, max_points, max_seconds).map_err(run_err)?;
+    let limits = AnalysisLimits {
+        max_points,
+        max_seconds,
+    };
+    let start = Instant::now();
+    planner
+        .admit_analysis(limits, &|| start.elapsed().as_secs_f64())
+        .map_err(run_err)?;
     let analysis = Analysis::run(&planner, MAP_SIZE, &mut progress);
     bar::end();
     let analysis = analysis.map_err(run_err)?;
@@ -110,102 +108,6 @@ pub fn run(words: &[String]) -> Result<(), Failure> {
             .write_all(json.as_bytes())
             .map_err(run_err),
     }
-}
-
-/// Segments of the path whose accuracy checks are timed for the estimate, spread in radius.
-const TIMED_SEGMENTS: usize = 16;
-
-const _: () = assert!(TIMED_SEGMENTS.is_power_of_two());
-
-/// The most the timing of those segments takes, s (at least one is timed).
-const TIMING_BUDGET_S: f64 = 2.0;
-
-/// Admits the job as `plan` does before walking it ([`Planner::cost`]: the surface defined and
-/// its heights finite and within reach at probes along the path), and refuses more than
-/// `max_points` points or an estimated time above `max_seconds`, naming the feed that would do
-/// (the time goes about as 1/f, as the points do). The time is the plan's per point, timed at
-/// the probes, and the checks of a segment between two points, timed at [`TIMED_SEGMENTS`]
-/// places ([`segment_seconds`]), on every core.
-fn admit(planner: &Planner, max_points: u64, max_seconds: f64) -> Result<(), PlanError> {
-    let start = Instant::now();
-    let clock = move || start.elapsed().as_secs_f64();
-    let cost = planner.cost(Some(&clock))?;
-    let feed = planner.job().strategy.feed_mm_per_rev;
-    let points = cost.points as f64;
-    let refuse = |ratio: f64, what: String| -> Result<(), PlanError> {
-        Err(FieldError::new(
-            "strategy.feed_mm_per_rev",
-            feed,
-            format!(
-                "{what}: a feed of at least {} mm/rev keeps it under",
-                short(feed * ratio * (1.0 + 1e-6))
-            ),
-        )
-        .into())
-    };
-    if cost.points > max_points {
-        let what = format!(
-            "gives about {} points; analyse walks at most {max_points} (--max-points raises it)",
-            short(points)
-        );
-        return refuse(points / max_points as f64, what);
-    }
-    let per_point = cost.seconds.unwrap_or(0.0) / points.max(1.0);
-    let (per_segment, timed) = segment_seconds(planner)?;
-    let seconds = points * (per_point + per_segment / workers() as f64);
-    if seconds > max_seconds {
-        let per_segment = match per_segment {
-            s if s >= 1.0 => duration(s),
-            s => format!("{:.3} ms", s * 1e3),
-        };
-        let places = if timed == 1 { "place" } else { "places" };
-        let what = format!(
-            "gives about {} points, about {} to analyse on {} cores (the checks between two \
-             points, {INTERVALS_PER_FEATURE} samples a feature length of {} mm or more, take \
-             {per_segment} a segment on one core, timed at {timed} {places} along the path), \
-             above the limit of {max_seconds} s (--max-seconds raises it)",
-            short(points),
-            duration(seconds),
-            workers(),
-            short(planner.surface().feature_length_mm()),
-        );
-        return refuse(seconds / max_seconds, what);
-    }
-    Ok(())
-}
-
-/// The mean time of the accuracy checks of one segment between two path points, s, and how many
-/// segments were timed: those of up to [`TIMED_SEGMENTS`] probes ([`Planner::probe`]), visited
-/// in an order that spreads them in radius, until [`TIMING_BUDGET_S`] has passed; each weighted
-/// by the path's points per mm of radius there. A segment whose check fails is the analysis's
-/// error, given at once.
-fn segment_seconds(planner: &Planner) -> Result<(f64, usize), PlanError> {
-    let probes = planner.probe(TIMED_SEGMENTS)?;
-    let n = probes.len();
-    let start = Instant::now();
-    let (mut weighted, mut weights, mut timed) = (0.0, 0.0, 0);
-    // The probes in bit-reversed order: the visits jump across the radius rather than walk it,
-    // so a timing cut short still spans it.
-    let bits = TIMED_SEGMENTS.trailing_zeros();
-    let order = (0..TIMED_SEGMENTS).map(|i| i.reverse_bits() >> (usize::BITS - bits));
-    for k in order.filter(|&k| k < n) {
-        let [_, a, b] = &probes[k].points;
-        let began = Instant::now();
-        segment_error(planner, a, b)?;
-        let w = probes[k].per_mm;
-        weighted += began.elapsed().as_secs_f64() * w;
-        weights += w;
-        timed += 1;
-        if start.elapsed().as_secs_f64() > TIMING_BUDGET_S {
-            break;
-        }
-    }
-    let mean = if weights > 0.0 {
-        weighted / weights
-    } else {
-        0.0
-    };
-    Ok((mean, timed))
 }
 
 /// Writes the defined samples of `map` as `x_mm,y_mm,<value>` rows, not yet renamed.

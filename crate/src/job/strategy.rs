@@ -49,9 +49,9 @@ pub enum Sampling {
     },
     /// Equal arc length along the planar spiral, the angle step capped near the centre.
     ConstantArc {
-        /// Arc length ΔS between points, mm, > 0.
+        /// Arc length ΔS between points, mm, at least 1e-6 (1 nm).
         arc_length_mm: f64,
-        /// Largest angle step, degrees, in (0, 90]; default 1°.
+        /// Largest angle step, degrees, in [0.00036, 90] (360° / 10⁶ at the finest); default 1°.
         #[serde(default = "default_max_angle_step")]
         max_angle_step_deg: f64,
     },

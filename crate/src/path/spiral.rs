@@ -23,7 +23,7 @@
 //! [`crate::tool::spiral`] picks the builder of each sampling: [`Spiral::new`],
 //! [`crate::path::hcaa::spiral`] or [`crate::path::space_spiral::spiral`].
 
-use crate::field::{FieldError, in_range, positive};
+use crate::field::{FieldError, in_range, length, positive};
 use crate::job::{Direction, Sampling};
 use std::f64::consts::TAU;
 use std::sync::Arc;
@@ -169,15 +169,15 @@ impl Spiral {
                 arc_length_mm,
                 max_angle_step_deg,
             } => {
-                positive("sampling.arc_length_mm", arc_length_mm)?;
-                if max_angle_step_deg <= 0.0 {
-                    return Err(FieldError::new(
-                        "sampling.max_angle_step_deg",
-                        max_angle_step_deg,
-                        "must be > 0",
-                    ));
-                }
-                in_range("sampling.max_angle_step_deg", max_angle_step_deg, 0.0, 90.0)?;
+                length("sampling.arc_length_mm", arc_length_mm)?;
+                // The finest cap is the finest constant-angle step, 360° / 10⁶.
+                let finest = 360.0 / MAX_POINTS_PER_REV as f64;
+                in_range(
+                    "sampling.max_angle_step_deg",
+                    max_angle_step_deg,
+                    finest,
+                    90.0,
+                )?;
             }
             Sampling::Hcaa { pv_tolerance_um } | Sampling::Adaptive { pv_tolerance_um } => {
                 check_tolerance(pv_tolerance_um)?;
@@ -347,17 +347,11 @@ impl Spiral {
             };
             let least = f * n / MAX_POINTS as f64 * (1.0 + 1e-6);
             if !least.is_finite() {
-                // No feed helps: the sampling's own step is too small to count its points.
-                let (field, value) = match sampling {
-                    Sampling::ConstantArc { arc_length_mm, .. } => {
-                        ("sampling.arc_length_mm", arc_length_mm.to_string())
-                    }
-                    _ => ("sampling", "its steps".to_string()),
-                };
+                // No feed helps (the steps are bounded below: not met by a checked sampling).
                 return Err(FieldError::new(
-                    field,
-                    value,
-                    "gives more points than can be counted, whatever the feed: a far longer step",
+                    "sampling",
+                    "its steps",
+                    "give more points than can be counted, whatever the feed",
                 ));
             }
             return Err(FieldError::new(
@@ -927,13 +921,27 @@ mod tests {
             ),
             "{e}"
         );
-        // An arc step that no feed helps names itself.
-        let s = Sampling::ConstantArc {
-            arc_length_mm: 5e-324,
-            max_angle_step_deg: 1.0,
+        // The constant-arc steps are bounded below (5e-324 counted infinite points at any
+        // feed), the cap's message says the open end (it said [0, 90] and refused 0).
+        let arc = |arc_length_mm, max_angle_step_deg| Sampling::ConstantArc {
+            arc_length_mm,
+            max_angle_step_deg,
         };
-        let e = Spiral::new(10.0, 0.01, &s, Direction::Ccw, 0.0).unwrap_err();
+        let e = Spiral::new(10.0, 0.01, &arc(5e-324, 1.0), Direction::Ccw, 0.0).unwrap_err();
         assert_eq!(e.field, "sampling.arc_length_mm", "{e}");
-        assert!(e.allowed.contains("whatever the feed"), "{e}");
+        assert!(e.allowed.contains("at least 1e-6 mm"), "{e}");
+        for cap in [0.0, 5e-324, 3.5e-4, 90.5] {
+            let e = Spiral::new(10.0, 0.01, &arc(0.01, cap), Direction::Ccw, 0.0).unwrap_err();
+            assert_eq!(
+                e.to_string().split(" = ").next(),
+                Some("sampling.max_angle_step_deg")
+            );
+            assert_eq!(e.allowed, "must lie in [0.00036, 90]", "{e}");
+        }
+        // The finest steps of both, at a feed of the radius: a finite count, refused by the
+        // feed that would do.
+        let e = Spiral::new(10.0, 1e-300, &arc(1e-6, 3.6e-4), Direction::Ccw, 0.0).unwrap_err();
+        assert_eq!(e.field, "feed_mm_per_rev", "{e}");
+        assert!(e.allowed.contains("a feed of at least"), "{e}");
     }
 }

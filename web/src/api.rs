@@ -48,18 +48,31 @@ pub fn version() -> String {
     env!("CARGO_PKG_VERSION").to_string()
 }
 
-/// The job of a JavaScript object, read as the command line reads a job file: through its JSON
-/// text ([`Job::from_json`]: the format first, so that a job from a newer spiralcam is refused
-/// naming its version, then every field), so that a bad job gets the command line's message
-/// (read field by field from the object, a number where an object belongs gave "TypeError:
-/// Reflect.get called on non-object", and 1e300 was written with all its 301 digits), less the
-/// text's line and column, which the page's user never sees.
+/// The job of a JavaScript object, read with the core's field checks. The job's `format` is
+/// checked first: a job from a newer spiralcam is refused naming its version, not the first
+/// field this version does not know. The object is read as it is, so that a number the form
+/// could not read (NaN: a field left blank) meets its field's own check ("= NaN: must be a
+/// finite number > 0"); a job the object's reader refuses is read again through its JSON text
+/// ([`Job::from_json`]) for the command line's words (the object's reader said "TypeError:
+/// Reflect.get called on non-object" for a number where the surface belongs, and wrote 1e300
+/// with all its 301 digits), less the text's line and column, which the page's user never sees.
 pub(crate) fn parse_job(job: JsValue) -> Result<Job, JsError> {
-    let text = js_sys::JSON::stringify(&job)
-        .ok()
-        .and_then(|t| t.as_string())
-        .ok_or_else(|| JsError::new("job: must be a JSON object {…}"))?;
-    Job::from_json(&text).map_err(|e| JsError::new(without_position(&e.to_string())))
+    let format =
+        js_sys::Reflect::get(&job, &JsValue::from_str("format")).unwrap_or(JsValue::UNDEFINED);
+    if !format.is_undefined() {
+        let value: serde_json::Value = serde_wasm_bindgen::from_value(format)
+            .unwrap_or_else(|_| serde_json::Value::String("an object".into()));
+        spiralcam::job::format::check_format(&value).map_err(|e| JsError::new(&e.to_string()))?;
+    }
+    Job::deserialize_from(serde_wasm_bindgen::Deserializer::from(job.clone())).map_err(|e| {
+        let text = js_sys::JSON::stringify(&job)
+            .ok()
+            .and_then(|t| t.as_string());
+        match text.map(|t| Job::from_json(&t)) {
+            Some(Err(worded)) => JsError::new(without_position(&worded.to_string())),
+            _ => JsError::new(&e.to_string()),
+        }
+    })
 }
 
 /// `message` without the " at line L column C" that a JSON reader puts at its end.

@@ -922,7 +922,7 @@ mod tests {
             "{e}"
         );
         // The constant-arc steps are bounded below (5e-324 counted infinite points at any
-        // feed), the cap's message says the open end (it said [0, 90] and refused 0).
+        // feed), and the cap's message gives the range it checks (it said [0, 90], refusing 0).
         let arc = |arc_length_mm, max_angle_step_deg| Sampling::ConstantArc {
             arc_length_mm,
             max_angle_step_deg,

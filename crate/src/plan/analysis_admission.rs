@@ -3,8 +3,8 @@
 //! limits with the feed that would do. The analysis walks the path like a plan and checks every
 //! segment between two points by samples along it ([`crate::analysis::linearization`]: 8 a
 //! feature length of the surface, 4 to 4096 a segment), whose cost depends on the surface far
-//! more than a planned point's does (scattered data: each sample walks its own line, about 30
-//! planned points' worth), so both are timed by the caller's clock: the plan's points at the
+//! more than a planned point's does (scattered data: each evaluation walks its own line, 190 µs
+//! against 23 µs a planned point, about 7 a segment), so both are timed by the caller's clock: the plan's points at the
 //! probes ([`Planner::cost`]), and the checks of [`TIMED_SEGMENTS`] segments spread in radius.
 //! The command line and the page admit an analysis through this one function.
 

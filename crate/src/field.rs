@@ -90,6 +90,18 @@ pub fn short(v: f64) -> String {
     }
 }
 
+/// The feed that brings a cost going as 1/f (points, bytes, time) from `ratio` times its limit
+/// to within it, as the refusals suggest it: `feed · ratio`, a millionth over, so that its
+/// [`short`] digits do not fall back under the limit.
+///
+/// ```
+/// use spiralcam::field::{feed_within, short};
+/// assert_eq!(short(feed_within(0.01, 4.32)), "0.04320004");
+/// ```
+pub fn feed_within(feed: f64, ratio: f64) -> f64 {
+    feed * ratio * (1.0 + 1e-6)
+}
+
 /// `text` with every long number (see `is_long`) put in [`short`] form.
 pub fn shorten_numbers(text: &str) -> String {
     let is_num = |c: char| c.is_ascii_digit() || c == '.';

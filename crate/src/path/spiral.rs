@@ -23,7 +23,7 @@
 //! [`crate::tool::spiral`] picks the builder of each sampling: [`Spiral::new`],
 //! [`crate::path::hcaa::spiral`] or [`crate::path::space_spiral::spiral`].
 
-use crate::field::{FieldError, in_range, length, positive};
+use crate::field::{FieldError, feed_within, in_range, length, positive};
 use crate::job::{Direction, Sampling};
 use std::f64::consts::TAU;
 use std::sync::Arc;
@@ -345,7 +345,7 @@ impl Spiral {
                     (outer_radius, wide.point_count_estimate())
                 }
             };
-            let least = f * n / MAX_POINTS as f64 * (1.0 + 1e-6);
+            let least = feed_within(f, n / MAX_POINTS as f64);
             if !least.is_finite() {
                 // No feed helps (the steps are bounded below: not met by a checked sampling).
                 return Err(FieldError::new(

@@ -20,7 +20,7 @@
 
 use super::{PlanError, Planner};
 use crate::dynamics;
-use crate::field::{FieldError, short};
+use crate::field::{FieldError, feed_within, short};
 use crate::nc::{CsvWriter, FtsTableWriter, NcWriter};
 use crate::parallel::workers;
 use crate::path::MAX_POINTS;
@@ -254,7 +254,7 @@ impl Limits {
     pub fn check(&self, cost: &Cost, outputs: Outputs, feed: f64) -> Result<(), FieldError> {
         let limits = self;
         let field = "strategy.feed_mm_per_rev";
-        let at_least = |ratio: f64| short(feed * ratio * (1.0 + 1e-6));
+        let at_least = |ratio: f64| short(feed_within(feed, ratio));
         let points = cost.points as f64;
         if cost.points > limits.max_points {
             return Err(FieldError::new(

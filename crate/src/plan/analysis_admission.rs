@@ -10,7 +10,7 @@
 
 use super::{PlanError, Planner};
 use crate::analysis::linearization::{INTERVALS_PER_FEATURE, segment_error};
-use crate::field::{FieldError, short};
+use crate::field::{FieldError, feed_within, short};
 use crate::parallel::workers;
 use crate::report::duration;
 
@@ -63,7 +63,7 @@ impl Planner {
                 feed,
                 format!(
                     "{what}: a feed of at least {} mm/rev keeps it under",
-                    short(feed * ratio * (1.0 + 1e-6))
+                    short(feed_within(feed, ratio))
                 ),
             )
             .into())

@@ -40,14 +40,15 @@ pub fn run(words: &[String]) -> Result<(), Failure> {
         words,
         &["--report", "--maps", "--max-points", "--max-seconds"],
     )?;
-    let max_points = args
-        .positive("--max-points")?
-        .map_or(AnalysisLimits::default().max_points, |n| {
-            (n as u64).min(MAX_POINTS)
-        });
-    let max_seconds = args
-        .positive("--max-seconds")?
-        .unwrap_or(AnalysisLimits::default().max_seconds);
+    let defaults = AnalysisLimits::default();
+    let limits = AnalysisLimits {
+        max_points: args
+            .positive("--max-points")?
+            .map_or(defaults.max_points, |n| (n as u64).min(MAX_POINTS)),
+        max_seconds: args
+            .positive("--max-seconds")?
+            .unwrap_or(defaults.max_seconds),
+    };
     let map_path = |suffix: &str| {
         args.path("--maps").map(|prefix| {
             let mut p = prefix.as_os_str().to_owned();
@@ -75,10 +76,6 @@ pub fn run(words: &[String]) -> Result<(), Failure> {
     check_targets(&targets, &inputs)?;
     let mut progress = bar::callback();
     let planner = Planner::with_progress(&job, &mut progress).map_err(run_err)?;
-    let limits = AnalysisLimits {
-        max_points,
-        max_seconds,
-    };
     let start = Instant::now();
     planner
         .admit_analysis(limits, &|| start.elapsed().as_secs_f64())

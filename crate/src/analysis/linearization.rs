@@ -642,6 +642,19 @@ pub fn error_ending_at(
     }
 }
 
+/// The sample intervals the check of the move from `a` to `b` takes (at least
+/// [`MIN_INTERVALS`], at most [`MAX_INTERVALS`]; see the module docs), for an estimate of its
+/// cost: its interior samples are one compensation each, as its refined points are.
+pub fn segment_intervals(
+    tool_path: &ToolPath,
+    a: &PathPoint,
+    b: &PathPoint,
+) -> Result<usize, UndefinedError> {
+    let ctx = Context::new(tool_path);
+    let ends = [ctx.jet_of_point(a)?, ctx.jet_of_point(b)?];
+    Ok(segment(&ctx, a, b, ends)?.intervals())
+}
+
 /// e(s), de/ds and d²e/ds² of the move from `a` to `b` at s (0 and 1 use the points' own
 /// contacts, so e is exactly 0 there), for checks and plots.
 pub fn error_at(

@@ -2,14 +2,18 @@
 //! admits a plan: the job's cost estimated before any point is walked, and refused beyond stated
 //! limits with the feed that would do. The analysis walks the path like a plan and checks every
 //! segment between two points by samples along it ([`crate::analysis::linearization`]: 8 a
-//! feature length of the surface, 4 to 4096 a segment), whose cost depends on the surface far
-//! more than a planned point's does (scattered data: each evaluation walks its own line, 190 µs
-//! against 23 µs a planned point, about 7 a segment), so both are timed by the caller's clock: the plan's points at the
-//! probes ([`Planner::cost`]), and the checks of [`TIMED_SEGMENTS`] segments spread in radius.
+//! feature length of the surface, 4 to 4096 a segment) and refined points at its extremes, each
+//! one compensation, whose cost depends on the surface far more than a planned point's does
+//! (scattered data: each evaluation walks its own line, 190 µs against 23 µs a planned point).
+//! So both are timed by the caller's clock: the plan's points at the probes
+//! ([`Planner::cost`]), and [`TIMED_EVALUATIONS`] evaluations of the segments of
+//! [`TIMED_SEGMENTS`] probes spread in radius, each segment's cost being its samples
+//! ([`segment_intervals`]) and [`REFINING_EVALUATIONS`] such evaluations: timing whole segments
+//! took seconds where one has 4096 samples.
 //! The command line and the page admit an analysis through this one function.
 
 use super::{PlanError, Planner};
-use crate::analysis::linearization::{INTERVALS_PER_FEATURE, segment_error};
+use crate::analysis::linearization::{INTERVALS_PER_FEATURE, error_at, segment_intervals};
 use crate::field::{FieldError, feed_within, short};
 use crate::parallel::workers;
 use crate::report::duration;
@@ -18,6 +22,13 @@ use crate::report::duration;
 pub const TIMED_SEGMENTS: usize = 16;
 
 const _: () = assert!(TIMED_SEGMENTS.is_power_of_two());
+
+/// Evaluations of the error timed in each of those segments, at evenly spaced interior points.
+pub const TIMED_EVALUATIONS: usize = 3;
+
+/// Evaluations a segment's check takes besides its samples, refining its extremes: 3.9 a
+/// segment measured on the scattered example, 1.4 on the paper 004 lens array.
+pub const REFINING_EVALUATIONS: usize = 4;
 
 /// The most the timing of those segments takes, s (at least one is timed).
 pub const TIMING_BUDGET_S: f64 = 2.0;
@@ -78,14 +89,10 @@ impl Planner {
             return refuse(points / max_points as f64, what);
         }
         let per_point = cost.seconds.unwrap_or(0.0) / points.max(1.0);
-        let (per_segment, timed) = self.segment_seconds(clock)?;
-        let seconds = points * (per_point + per_segment / workers() as f64);
+        let (cost, timed) = self.segment_seconds(clock)?;
+        let seconds = points * (per_point + cost.segment / workers() as f64);
         let max_seconds = limits.max_seconds;
         if seconds > max_seconds {
-            let per_segment = match per_segment {
-                s if s >= 1.0 => duration(s),
-                s => format!("{:.3} ms", s * 1e3),
-            };
             let places = if timed == 1 { "place" } else { "places" };
             let cores = match workers() {
                 1 => "one core".to_string(),
@@ -93,50 +100,76 @@ impl Planner {
             };
             let what = format!(
                 "gives about {} points, about {} to analyse on {cores} (the checks between two \
-                 points, {INTERVALS_PER_FEATURE} samples a feature length of {} mm or more, take \
-                 {per_segment} a segment on one core, timed at {timed} {places} along the path), \
-                 above the limit of {max_seconds} s (--max-seconds raises it)",
+                 points, {INTERVALS_PER_FEATURE} samples a feature length of {} mm or more and \
+                 about {REFINING_EVALUATIONS} refining the extremes, take {} a segment on one \
+                 core: {} an evaluation, timed at {timed} {places} along the path), above the \
+                 limit of {max_seconds} s (--max-seconds raises it)",
                 short(points),
                 duration(seconds),
                 short(self.surface().feature_length_mm()),
+                time_words(cost.segment),
+                time_words(cost.evaluation),
             );
             return refuse(seconds / max_seconds, what);
         }
         Ok(())
     }
 
-    /// The mean time by `clock` of the accuracy checks of one segment between two path points,
-    /// s, and how many segments were timed: those of up to [`TIMED_SEGMENTS`] probes
-    /// ([`crate::tool::ToolPath::probe`]), visited in an order that spreads them in radius,
-    /// until [`TIMING_BUDGET_S`] has passed; each weighted by the path's points per mm of radius
-    /// there. A segment whose check fails is the analysis's error, given at once.
-    fn segment_seconds(&self, clock: &dyn Fn() -> f64) -> Result<(f64, usize), PlanError> {
+    /// The mean time by `clock` of the accuracy checks of one segment between two path points
+    /// and of one evaluation in them, s, and how many segments were timed: those of up to
+    /// [`TIMED_SEGMENTS`] probes ([`crate::tool::ToolPath::probe`]), visited in an order that
+    /// spreads them in radius, until [`TIMING_BUDGET_S`] has passed; each weighted by the path's
+    /// points per mm of radius there. A segment whose check fails is the analysis's error, given
+    /// at once.
+    fn segment_seconds(&self, clock: &dyn Fn() -> f64) -> Result<(SegmentCost, usize), PlanError> {
         let probes = self.probe(TIMED_SEGMENTS)?;
         let n = probes.len();
         let start = clock();
-        let (mut weighted, mut weights, mut timed) = (0.0, 0.0, 0);
+        let (mut segment, mut evaluation, mut weights, mut timed) = (0.0, 0.0, 0.0, 0);
         // The probes in bit-reversed order: the visits jump across the radius rather than walk
         // it, so a timing cut short still spans it.
         let bits = TIMED_SEGMENTS.trailing_zeros();
         let order = (0..TIMED_SEGMENTS).map(|i| i.reverse_bits() >> (usize::BITS - bits));
         for k in order.filter(|&k| k < n) {
             let [_, a, b] = &probes[k].points;
-            let began = clock();
-            segment_error(self, a, b)?;
+            let samples = segment_intervals(self, a, b)? - 1;
+            let mut took = 0.0;
+            for i in 1..=TIMED_EVALUATIONS {
+                let began = clock();
+                error_at(self, a, b, i as f64 / (TIMED_EVALUATIONS + 1) as f64)?;
+                took += (clock() - began).max(0.0);
+            }
+            let each = took / TIMED_EVALUATIONS as f64;
             let w = probes[k].per_mm;
-            weighted += (clock() - began).max(0.0) * w;
+            evaluation += each * w;
+            segment += each * (samples + REFINING_EVALUATIONS) as f64 * w;
             weights += w;
             timed += 1;
             if clock() - start > TIMING_BUDGET_S {
                 break;
             }
         }
-        let mean = if weights > 0.0 {
-            weighted / weights
-        } else {
-            0.0
+        let mean = |total: f64| if weights > 0.0 { total / weights } else { 0.0 };
+        let cost = SegmentCost {
+            segment: mean(segment),
+            evaluation: mean(evaluation),
         };
-        Ok((mean, timed))
+        Ok((cost, timed))
+    }
+}
+
+/// The time of one segment's accuracy checks and of one evaluation in them, s.
+struct SegmentCost {
+    segment: f64,
+    evaluation: f64,
+}
+
+/// A time in words: milliseconds below a second, else [`duration`]'s.
+fn time_words(s: f64) -> String {
+    if s >= 1.0 {
+        duration(s)
+    } else {
+        format!("{:.3} ms", s * 1e3)
     }
 }
 
@@ -161,15 +194,15 @@ mod tests {
         let limits = AnalysisLimits::default();
         // A microsecond a reading: every probe timed, far under 600 s.
         planner.admit_analysis(limits, &ticking(1e-6)).unwrap();
-        // A second a reading: a segment takes 1 s between its two readings, and the timing
-        // stops after the first (3 s of its 2 s budget gone).
+        // A second a reading: each evaluation takes 1 s between its two readings, and the
+        // timing stops after the first segment (7 s of its 2 s budget gone).
         let e = planner
             .admit_analysis(limits, &ticking(1.0))
             .unwrap_err()
             .to_string();
         assert!(
             e.starts_with("strategy.feed_mm_per_rev = ")
-                && e.contains("take 1.00 s a segment on one core, timed at 1 place along the path")
+                && e.contains("1.00 s an evaluation, timed at 1 place along the path")
                 && e.contains("above the limit of 600 s"),
             "{e}"
         );

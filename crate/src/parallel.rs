@@ -104,6 +104,22 @@ where
 /// are reused. With one worker (the browser) everything runs on the calling thread. The first
 /// error in order wins and stops the pipeline.
 pub fn pipeline<I, O, E>(
+    fill: impl FnMut(&mut Vec<I>),
+    work: impl Fn(u64, &[I], &mut Vec<O>) -> Result<(), E> + Sync,
+    consume: impl FnMut(&[O]) -> Result<(), E>,
+) -> Result<(), E>
+where
+    I: Send,
+    O: Send,
+    E: Send,
+{
+    pipeline_on(workers(), fill, work, consume)
+}
+
+/// [`pipeline`] on `w` threads (at least one): 1 where `work` itself shares each batch out
+/// over the cores.
+pub fn pipeline_on<I, O, E>(
+    w: usize,
     mut fill: impl FnMut(&mut Vec<I>),
     work: impl Fn(u64, &[I], &mut Vec<O>) -> Result<(), E> + Sync,
     mut consume: impl FnMut(&[O]) -> Result<(), E>,
@@ -113,7 +129,7 @@ where
     O: Send,
     E: Send,
 {
-    let w = workers();
+    let w = w.max(1);
     let (mut input, mut output) = (Vec::new(), Vec::new());
     let mut first = 0u64;
     if w == 1 {

@@ -268,6 +268,13 @@ impl ToolPath {
             && self.spiral.turn_points().is_some()
     }
 
+    /// Whether a walk computes one batch at a time, shared out over the cores (line by line on
+    /// several, [`LINE_BATCH`]), rather than each worker a batch of its own: then the work
+    /// beside the points ([`Self::for_each_pair_in`]'s pairs) is shared out too.
+    fn shares_batches(&self) -> bool {
+        self.walks_line_by_line() && workers() > 1
+    }
+
     /// The points of `input` computed in `order` ([`Self::line_order`]) into `batch`, in the
     /// input's order; the first point that fails in the input's order gives the error.
     fn points_in_order(
@@ -517,10 +524,27 @@ impl ToolPath {
             progress,
             |batch, pairs: &mut Vec<T>| {
                 pairs.clear();
-                for (k, b) in batch.iter().enumerate().filter(|(_, b)| b.handed_on) {
+                let handed_on = (0..batch.len()).filter(|&k| batch[k].handed_on);
+                let of = |k: usize| {
                     let previous = k.checked_sub(1).map(|j| &batch[j].point);
-                    pairs.push(pair(previous, &b.point)?);
+                    pair(previous, &batch[k].point)
+                };
+                if !self.shares_batches() {
+                    for k in handed_on {
+                        pairs.push(of(k)?);
+                    }
+                    return Ok(());
                 }
+                // One batch at a time: its pairs shared out over the cores as its points were.
+                let handed_on: Vec<usize> = handed_on.collect();
+                let mut computed: Vec<Option<T>> = handed_on.iter().map(|_| None).collect();
+                fill_chunks(&mut computed, |first, out| {
+                    for (slot, &k) in out.iter_mut().zip(&handed_on[first..]) {
+                        *slot = Some(of(k)?);
+                    }
+                    Ok::<(), E>(())
+                })?;
+                pairs.extend(computed.into_iter().flatten());
                 Ok(())
             },
             &mut |batch, pairs| {
@@ -559,7 +583,7 @@ impl ToolPath {
         // Line by line on several cores, one batch at a time is shared out over them by its
         // lines ([`Self::points_in_order`]); else each worker computes batches of its own.
         let w = workers();
-        let (batch, pipeline_workers) = match self.walks_line_by_line() && w > 1 {
+        let (batch, pipeline_workers) = match self.shares_batches() {
             true => (line_batch(total), 1),
             false => (even_batch(total, w, self.surface.keeps_lines()), w),
         };

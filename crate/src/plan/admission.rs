@@ -10,8 +10,10 @@
 //! times the points, plus the header, approach and end written once. The servo's gridded table
 //! is sized only after the dynamics: its bound ([`crate::nc::fts_grid::max_bytes`] of
 //! [`crate::dynamics::fts_grid::MAX_ENTRIES`]) stands for it. **Time**: with a clock,
-//! the probe is compensated and formatted again and timed; compensation runs on every core,
-//! formatting on one, and a job with machine dynamics computes its path twice. The concave-zone
+//! the probe's runs are timed as they are compensated (shared out over the cores, each run's
+//! time read on its own thread) and their blocks formatted again and timed on one thread;
+//! compensation runs on every core, formatting on one, and a job with machine dynamics
+//! computes its path twice. The concave-zone
 //! report and the accuracy analysis are not in the estimate (they have their own bounds:
 //! [`crate::tool::reach::MAX_MEASURED_ZONES`], and the analyses read the path once).
 //!
@@ -81,7 +83,7 @@ impl Planner {
     /// The cost of this job ([`Cost`]); `clock` (seconds, any origin) times the estimate where
     /// the caller has one. Errors: the surface undefined where a probe falls, or a word that
     /// cannot be written there (a height that is not finite), before any output exists.
-    pub fn cost(&self, clock: Option<&dyn Fn() -> f64>) -> Result<Cost, PlanError> {
+    pub fn cost(&self, clock: Option<&(dyn Fn() -> f64 + Sync)>) -> Result<Cost, PlanError> {
         let path_points = self.spiral().point_count_hint();
         let (written, computed) = program_factors(self.job());
         let points = (path_points as f64 * written).round() as u64;

@@ -63,7 +63,7 @@ impl Planner {
     pub fn admit_analysis(
         &self,
         limits: AnalysisLimits,
-        clock: &dyn Fn() -> f64,
+        clock: &(dyn Fn() -> f64 + Sync),
     ) -> Result<(), PlanError> {
         let cost = self.cost(Some(clock))?;
         let feed = self.job().strategy.feed_mm_per_rev;
@@ -177,15 +177,12 @@ fn time_words(s: f64) -> String {
 mod tests {
     use super::*;
     use crate::job::Job;
-    use std::cell::Cell;
+    use std::sync::atomic::{AtomicU64, Ordering};
 
-    /// A clock that moves `step` seconds at every reading.
-    fn ticking(step: f64) -> impl Fn() -> f64 {
-        let now = Cell::new(0.0);
-        move || {
-            now.set(now.get() + step);
-            now.get()
-        }
+    /// A clock that moves `step` seconds at every reading (by any thread).
+    fn ticking(step: f64) -> impl Fn() -> f64 + Sync {
+        let readings = AtomicU64::new(0);
+        move || (readings.fetch_add(1, Ordering::Relaxed) + 1) as f64 * step
     }
 
     #[test]

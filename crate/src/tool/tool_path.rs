@@ -125,7 +125,7 @@ pub fn spiral(
 
 /// Three consecutive points of the path somewhere along it ([`ToolPath::probe`]), and how many
 /// points the path has per mm of radius there.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Probe {
     /// The points, each one step further along the path than the one before.
     pub points: [PathPoint; 3],
@@ -388,16 +388,17 @@ impl ToolPath {
 
     /// [`Self::probe`], and the time by `clock` that the runs' second and third points took:
     /// each is started from the contact before it, as the walk computes every point but a
-    /// run's first ([`WARM_RUN`]), so this is the time of the points of a walk; the runs'
-    /// first points, each searched without a start, are computed before the clock starts, on
-    /// every core (a search of the whole arc costs more than a step from the last contact;
-    /// they also meet every cache's cold start, so one pass is timed). Where the
-    /// walk goes line by line (scattered data on a constant-angle spiral), each timed point's
-    /// line is first walked by the point one turn outward, untimed, as in the walk.
+    /// run's first ([`WARM_RUN`]), so this is the time of the points of a walk, summed over
+    /// the runs, which are shared out over the cores as the walk's points are. Each run's
+    /// first point, searched without a start, is computed before its clock starts (a search
+    /// of the whole arc costs more than a step from the last contact; the first points also
+    /// meet every cache's cold start, so one pass is timed). Where the walk goes line by line
+    /// (scattered data on a constant-angle spiral), each timed point's line is first walked
+    /// by the point one turn outward, untimed, as in the walk.
     pub fn probe_timed(
         &self,
         n: usize,
-        clock: &dyn Fn() -> f64,
+        clock: &(dyn Fn() -> f64 + Sync),
     ) -> Result<(Vec<Probe>, f64), UndefinedError> {
         self.probe_runs(n, Some(clock))
     }
@@ -407,7 +408,7 @@ impl ToolPath {
     fn probe_runs(
         &self,
         n: usize,
-        clock: Option<&dyn Fn() -> f64>,
+        clock: Option<&(dyn Fn() -> f64 + Sync)>,
     ) -> Result<(Vec<Probe>, f64), UndefinedError> {
         let now = || clock.map_or(0.0, |c| c());
         let r0 = self.spiral.start_radius_mm();
@@ -421,18 +422,13 @@ impl ToolPath {
             })
             .collect();
         let index = |a: &SpiralPoint| (total * (1.0 - a.rho / r0)).max(0.0) as u64;
-        // The runs' first points, each a cold search of the whole arc, untimed: on every core.
-        let mut firsts = vec![(PathPoint::default(), None); runs.len()];
-        fill_each(&mut firsts, |k| {
-            let a = runs[k][0];
-            let mut warm = None;
-            let p = self.path_point(index(&a), a, &mut warm)?.0;
-            Ok::<_, UndefinedError>((p, warm))
-        })?;
         let line_by_line = clock.is_some() && self.walks_line_by_line();
-        let mut elapsed = 0.0;
-        let mut probes = Vec::with_capacity(runs.len());
-        for ([a, b, c], (first, mut warm)) in runs.into_iter().zip(firsts) {
+        let mut timed = vec![(Probe::default(), 0.0); runs.len()];
+        fill_each(&mut timed, |k| {
+            let [a, b, c] = runs[k];
+            let i = index(&a);
+            let mut warm = None;
+            let first = self.path_point(i, a, &mut warm)?.0;
             if line_by_line {
                 // Such a walk finds each point's line walked as far as the point one turn
                 // outward, computed just before it: so do the timed points, whose lines are
@@ -445,7 +441,6 @@ impl ToolPath {
                     let _ = self.path_point(0, outward, &mut None);
                 }
             }
-            let i = index(&a);
             let advance = a.rho - b.rho;
             let start = now();
             let points = [
@@ -453,13 +448,12 @@ impl ToolPath {
                 self.path_point(i + 1, b, &mut warm)?.0,
                 self.path_point(i + 2, c, &mut warm)?.0,
             ];
-            elapsed += now() - start;
-            probes.push(Probe {
-                points,
-                per_mm: if advance > 0.0 { 1.0 / advance } else { 0.0 },
-            });
-        }
-        Ok((probes, elapsed))
+            let elapsed = now() - start;
+            let per_mm = if advance > 0.0 { 1.0 / advance } else { 0.0 };
+            Ok::<_, UndefinedError>((Probe { points, per_mm }, elapsed))
+        })?;
+        let elapsed = timed.iter().map(|t| t.1).sum();
+        Ok((timed.into_iter().map(|t| t.0).collect(), elapsed))
     }
 
     /// Zones where the nose cannot reach the surface (see [`crate::tool::reach`]); `progress`
@@ -475,10 +469,10 @@ impl ToolPath {
 
     /// Computes every point in order, compensating batches of 16 384 points on every core
     /// ([`crate::parallel::pipeline`]: the next batches are computed while `visit` takes this
-    /// one; where the walk goes line by line, batches of up to 524 288 points, one at a
-    /// time, each shared out over the cores by its lines), and hands each to `visit` with whether the two-way offset folds there; `progress`
-    /// is called every [`PROGRESS_EVERY`] points and at the end, as `stage` (`Break` cancels).
-    /// Returns the count.
+    /// one; where the walk goes line by line, batches of up to 524 288 points, one at a time,
+    /// each shared out over the cores by its lines), and hands each to `visit` with whether
+    /// the two-way offset folds there; `progress` is called every [`PROGRESS_EVERY`] points
+    /// and at the end, as `stage` (`Break` cancels). Returns the count.
     pub fn for_each_point<E: From<PathError> + Send>(
         &self,
         stage: Stage,

@@ -396,18 +396,12 @@ impl KinkScans {
         delta: f64,
         section: &(dyn Fn(usize) -> Envelope<'a> + Sync),
     ) -> Result<Self, UndefinedError> {
-        let mut kinks: Vec<(usize, f64)> = (probes.iter())
-            .filter_map(|&(_, i, p)| match p {
-                Probe::Kink(t) => Some((i, t)),
-                Probe::Search(..) => None,
-            })
-            .collect();
-        kinks.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
         // Every (angle index, lattice index) a scan reaches, once.
         let mut wanted: Vec<(usize, i64)> = Vec::new();
-        for &(i, t) in &kinks {
-            let env = section(i);
-            wanted.extend(env.lattice(t, delta).map(|k| (i, k)));
+        for &(_, i, probe) in probes {
+            if let Probe::Kink(t) = probe {
+                wanted.extend(section(i).lattice(t, delta).map(|k| (i, k)));
+            }
         }
         wanted.sort_unstable();
         wanted.dedup();

@@ -1,7 +1,8 @@
 //! Work split over the machine's cores: every core natively, one thread in the browser, where
 //! the module has no threads and spawning one would trap. Each item is computed alone, so a
 //! result never depends on how the work was split. [`fill_chunks`] splits one slice over the
-//! threads, [`fill_each`] hands its items out one at a time; [`pipeline`] streams batches
+//! threads, [`fill_each`] hands its items out one at a time, [`both`] runs two stages side by
+//! side; [`pipeline`] streams batches
 //! through them in order while the calling thread consumes the finished ones (a
 //! producer-consumer pipeline over `std::sync::mpsc` channels).
 
@@ -13,6 +14,26 @@ pub fn workers() -> usize {
     // Asked once: the standard library reads the cgroup's quota files each time.
     static WORKERS: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
     *WORKERS.get_or_init(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+}
+
+/// `a()` and `b()`, `b` on a second thread while the calling thread computes `a` (one after the
+/// other where there is one worker): for two independent stages of one job.
+pub fn both<A, B>(a: impl FnOnce() -> A, b: impl FnOnce() -> B + Send) -> (A, B)
+where
+    B: Send,
+{
+    if workers() <= 1 {
+        let first = a();
+        return (first, b());
+    }
+    std::thread::scope(|scope| {
+        let other = scope.spawn(b);
+        let first = a();
+        let second = other
+            .join()
+            .unwrap_or_else(|e| std::panic::resume_unwind(e));
+        (first, second)
+    })
 }
 
 /// Fills `out` by `fill(first, chunk)` on [`workers`] threads, each given a contiguous chunk
@@ -197,6 +218,17 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn both_gives_each_stage_its_own_result_and_a_second_thread_where_there_are_cores() {
+        let here = std::thread::current().id();
+        let (a, (b, other)) = both(
+            || (0..1000u64).sum::<u64>(),
+            || ((1..=20u64).product::<u64>(), std::thread::current().id()),
+        );
+        assert_eq!((a, b), (499_500, 2_432_902_008_176_640_000));
+        assert_eq!(other != here, workers() > 1);
+    }
 
     #[test]
     fn the_pipeline_hands_every_batch_on_in_order_and_stops_at_the_first_error() {

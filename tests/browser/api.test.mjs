@@ -105,6 +105,24 @@ describe('pkg/spiralcam.js in the browser', () => {
     assert.equal(message, 'tool.nose_radius_mm = -1: must be a finite number ≥ 0');
   });
 
+  test('a split path too long for the page is refused with both limits', async () => {
+    // The sine grid at 35 500 points a revolution: 28 400 001 points, which the command line
+    // takes with its dynamics and the page (a tab's memory) does not.
+    const grid = JSON.parse(readFileSync(join(ROOT, 'crate/jobs/sinusoid-grid-fts.json'), 'utf8'));
+    grid.strategy.sampling.points_per_rev = 35500;
+    const message = await page.evaluate(async (j) => {
+      try {
+        await (await import('/pkg/spiralcam.js')).plan(j);
+        return 'resolved';
+      } catch (e) {
+        return e.message;
+      }
+    }, grid);
+    assert.match(message, /^strategy\.feed_mm_per_rev = 0\.005: gives about [^;]+ points; the machine dynamics/, message);
+    assert.ok(message.includes('take at most 17000000: a feed of at least 0.008352'), message);
+    assert.ok(message.includes('the command line writes any size and takes 30000000 points'), message);
+  });
+
   test('a job of the wrong shape rejects with the command line\'s words', async () => {
     // Read field by field from the object, a number for the surface said "TypeError:
     // Reflect.get called on non-object", and 1e300 was written out in 301 digits.

@@ -14,7 +14,8 @@ use spiralcam::dynamics::split::{Limit, Verdict};
 use spiralcam::job::Job;
 use spiralcam::job::SplitSpec;
 use spiralcam::job::machine::presets;
-use spiralcam::plan::{Planner, Sinks};
+use spiralcam::plan::{Limits, Planner, Sinks};
+use spiralcam::report::Outputs;
 use spiralcam::report::Report;
 use std::ops::ControlFlow;
 
@@ -293,15 +294,54 @@ fn the_compound_eye_splits_its_two_frequencies_onto_the_right_axes() {
 #[test]
 fn the_dynamics_refuse_a_path_too_long_to_hold() {
     let mut job = coarse_grid_fts();
-    job.strategy.feed_mm_per_rev = 0.0001; // 40 000 revolutions of 512 points
+    job.strategy.feed_mm_per_rev = 0.00005; // 80 000 revolutions of 512 points
     let e = dynamics_error(&job);
     let limit = spiralcam::dynamics::MAX_POINTS;
     assert!(
         e.starts_with(&format!(
-            "strategy.sampling = 20480001 points: at most {limit} points"
+            "strategy.sampling = 40960001 points: at most {limit} points"
         )),
         "{e}"
     );
+}
+
+/// A 28.4 M-point finishing path with a split is admitted on the command line's limits, and
+/// refused where fewer points are allowed (the page's), naming the feed that would do.
+#[test]
+fn a_finishing_path_of_28_4_m_points_is_admitted_with_its_dynamics() {
+    let mut job = coarse_grid_fts();
+    // 4 mm of radius at 512 points a revolution: 28 400 001 points at 4/55 468.75 mm/rev.
+    job.strategy.feed_mm_per_rev = 4.0 / 55_468.75;
+    let planner = Planner::new(&job).unwrap();
+    let cost = planner.cost(None).unwrap();
+    assert_eq!((cost.points, cost.passes), (28_400_001, 2));
+    let outputs = Outputs {
+        nc: true,
+        ..Outputs::default()
+    };
+    let feed = job.strategy.feed_mm_per_rev;
+    Limits::default().check(&cost, outputs, feed).unwrap();
+    let page = Limits {
+        max_dynamics_points: 17_000_000,
+        ..Limits::default()
+    };
+    let e = page.check(&cost, outputs, feed).unwrap_err().to_string();
+    assert!(
+        e.contains("hold the path in memory and take at most 17000000"),
+        "{e}"
+    );
+    // The feed that would do: 28 400 001 / 17 000 000 of this one, rounded up.
+    let least = feed * 28_400_001.0 / 17_000_000.0;
+    let said: f64 = e
+        .split("a feed of at least ")
+        .nth(1)
+        .unwrap()
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(least <= said && said <= least * (1.0 + 1e-5), "{e}");
 }
 
 /// The slides' bandwidths: a tilted flat asks Z for one cycle per revolution (n/60 Hz; its

@@ -528,6 +528,11 @@ pub fn fts_grid(job: JsValue, progress: &js_sys::Function) -> Result<Vec<u8>, Js
 /// size to disk).
 const MAX_DOWNLOAD_BYTES: u64 = 1_000_000_000;
 
+/// The most points the page runs the machine dynamics on: they hold the path in the worker's
+/// memory (about 1.4 GB at this limit, 82–85 bytes a point measured natively), beside the
+/// download's buffer, in a wasm32 memory of at most 4 GiB.
+const MAX_DYNAMICS_POINTS: u64 = 17_000_000;
+
 /// The job's cost ([`Planner::cost`]; no clock in the browser), refused beyond the page's
 /// limits for the file that `outputs` names.
 fn admit(planner: &Planner, outputs: Outputs) -> Result<Cost, JsError> {
@@ -536,13 +541,17 @@ fn admit(planner: &Planner, outputs: Outputs) -> Result<Cost, JsError> {
         .map_err(|e| JsError::new(&e.to_string()))?;
     let limits = Limits {
         max_output_bytes: MAX_DOWNLOAD_BYTES,
+        max_dynamics_points: MAX_DYNAMICS_POINTS,
         ..Limits::default()
     };
     limits
         .check(&cost, outputs, planner.job().strategy.feed_mm_per_rev)
         .map_err(|e| {
             JsError::new(&format!(
-                "{e} (in the page a download is at most 1 GB; the command line writes any size)"
+                "{e} (in the page a download is at most 1 GB and the machine dynamics take at \
+                 most {MAX_DYNAMICS_POINTS} points; the command line writes any size and takes \
+                 {} points with the dynamics)",
+                spiralcam::dynamics::MAX_POINTS
             ))
         })?;
     Ok(cost)

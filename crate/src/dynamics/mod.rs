@@ -40,6 +40,7 @@ use crate::dynamics::split::{Limit, SplitError, SplitLimits, Verdict, split_on};
 use crate::job::Job;
 use crate::job::MachineSpec;
 use crate::job::SplitSpec;
+use crate::parallel::both;
 use crate::path::PathError;
 use crate::path::PathPoint;
 use crate::progress::{Progress, Stage};
@@ -68,8 +69,11 @@ impl From<crate::field::FieldError> for DynamicsError {
 /// Bins of the spectrum kept for display (peaks survive the decimation).
 pub const SPECTRUM_BINS: usize = 2048;
 
-/// The most points the dynamics analyse (about 1.9 GB in memory).
-pub const MAX_POINTS: u64 = 17_000_000;
+/// The most points the dynamics analyse: 3·10⁷, above a 28.4 M-point finishing path (measured
+/// 2.34 GB at 28 400 001 points of the sine grid, 82 bytes a point; [`BYTES_PER_POINT`] reckons
+/// 3.4 GB at this limit). The page admits fewer
+/// ([`crate::plan::admission::Limits::max_dynamics_points`]): a tab's memory is smaller.
+pub const MAX_POINTS: u64 = 30_000_000;
 
 /// The peak memory of the dynamics per path point, bytes, with some room: 95–97 MiB
 /// (100–102 MB) of peak resident set for 1 000 001 points of the sine grid
@@ -459,12 +463,17 @@ impl Dynamics {
             let slide = z_slide.as_ref().and_then(|z| z.get(i)).copied();
             AxisSample::new(path.theta[i], signal.rho_mm[i], signal.z_mm[i], slide)
         });
-        let axes = check_axes(samples, machine);
-        // The slide's Z on the grid: the path's, or its share of a split path resampled alike.
-        let z_needed_hz = grid.map(|g| match &z_slide {
-            Some(z) => needed_hz(g, signal.uniform_values(z)),
-            None => needed_hz(g, g.z_mm.clone()),
-        });
+        // The axis checks (a pass over the points) beside Z's bandwidth figure (a transform of
+        // the slide's Z on the grid: the path's, or its share of a split path resampled alike).
+        let (axes, z_needed_hz) = both(
+            || check_axes(samples, machine),
+            || {
+                grid.map(|g| match &z_slide {
+                    Some(z) => needed_hz(g, signal.uniform_values(z)),
+                    None => needed_hz(g, g.z_mm.clone()),
+                })
+            },
+        );
         let bandwidth = SlideBandwidths {
             x: BandwidthCheck::of(x_needed_hz, machine.x_slide.map(|s| s.bandwidth_hz)),
             z: BandwidthCheck::of(z_needed_hz, machine.z_slide.map(|s| s.bandwidth_hz)),

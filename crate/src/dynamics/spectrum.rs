@@ -60,9 +60,11 @@
 //! for a complex transform in place with its scratch (the dynamics' peak memory).
 
 use crate::dynamics::path_signal::{PathSignal, UniformSignal, hz, residual_gain};
+use crate::parallel::fill_each;
 use realfft::{ComplexToReal, FftError, RealFftPlanner};
 use rustfft::num_complex::Complex;
 use serde::Serialize;
+use std::convert::Infallible;
 use std::f64::consts::{PI, TAU};
 
 /// The most peaks listed.
@@ -150,6 +152,8 @@ pub fn hann_amplitudes(mut x: Vec<f64>, len: usize) -> Vec<f64> {
 /// its output, against 48 for a complex transform in place with its scratch). `x` is its
 /// scratch and is let go.
 pub(crate) fn real_spectrum(mut x: Vec<f64>, len: usize) -> Vec<Complex<f64>> {
+    // Grown to the padded length exactly: `resize` alone would double the record's capacity.
+    x.reserve_exact(len.saturating_sub(x.len()));
     x.resize(len, 0.0);
     let forward = RealFftPlanner::<f64>::new().plan_fft_forward(len);
     let mut out = forward.make_output_vec();
@@ -440,27 +444,32 @@ pub fn instantaneous_frequency_on(
         let turn = (b * a.conj()).arg() / TAU;
         (hz(turn * m, spindle_rpm), 0.5 * (a.norm() + b.norm()))
     };
-    (stretch.into_iter().enumerate())
+    let met: Vec<(usize, (usize, usize))> = (stretch.into_iter().enumerate())
         .filter(|(_, (first, _))| *first != usize::MAX)
-        .map(|(b, (first, last))| {
-            let mut v: Vec<(f64, f64)> = (first..=last)
-                .filter(|&j| band_of(j) == b)
-                .map(frequency)
-                .collect();
-            let mut env: Vec<f64> = v.iter().map(|e| e.1).collect();
-            let middle = env.len() / 2;
-            let (_, median_envelope, _) = env.select_nth_unstable_by(middle, f64::total_cmp);
-            // Equal frequencies are one value to the quantiles: their order does not matter.
-            v.sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
-            BandFrequency {
-                rho_outer_mm: rho_max - b as f64 * width,
-                rho_inner_mm: rho_max - (b + 1) as f64 * width,
-                median_hz: weighted_quantile(&v, 0.5),
-                p95_hz: weighted_quantile(&v, 0.95),
-                amplitude_um: *median_envelope * 1e3,
-            }
-        })
-        .collect()
+        .collect();
+    // The bands' figures, each band on the next free core (each holds its own pairs only).
+    let figures = |k: usize| {
+        let (b, (first, last)) = met[k];
+        let mut v: Vec<(f64, f64)> = (first..=last)
+            .filter(|&j| band_of(j) == b)
+            .map(frequency)
+            .collect();
+        let mut env: Vec<f64> = v.iter().map(|e| e.1).collect();
+        let middle = env.len() / 2;
+        let (_, median_envelope, _) = env.select_nth_unstable_by(middle, f64::total_cmp);
+        // Equal frequencies are one value to the quantiles: their order does not matter.
+        v.sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
+        Ok::<_, Infallible>(Some(BandFrequency {
+            rho_outer_mm: rho_max - b as f64 * width,
+            rho_inner_mm: rho_max - (b + 1) as f64 * width,
+            median_hz: weighted_quantile(&v, 0.5),
+            p95_hz: weighted_quantile(&v, 0.95),
+            amplitude_um: *median_envelope * 1e3,
+        }))
+    };
+    let mut out = vec![None; met.len()];
+    let Ok(()) = fill_each(&mut out, figures);
+    out.into_iter().flatten().collect()
 }
 
 /// The `q`-quantile of values sorted ascending with weights: the first value where the

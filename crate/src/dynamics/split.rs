@@ -49,13 +49,14 @@
 //! k*. No speed helps when the stroke fails.
 
 use crate::dynamics::path_signal::{
-    PathSignal, SignalError, UniformSignal, hz, omega, peak_to_valley,
+    AngleExtremes, PathSignal, SignalError, UniformSignal, hz, omega, peak_to_valley,
 };
 use crate::dynamics::spectrum::{
     fast_length, highest_significant_cycles_per_rev, real_inverse, real_spectrum,
 };
 use crate::field::{FieldError, positive};
 use crate::job::SplitSpec;
+use crate::parallel::both;
 use realfft::{ComplexToReal, RealFftPlanner};
 use rustfft::num_complex::Complex;
 use serde::{Deserialize, Serialize};
@@ -366,6 +367,13 @@ fn validate(l: &SplitLimits) -> Result<(), FieldError> {
     Ok(())
 }
 
+/// The slide's and the servo's extremes along the path, and the servo's peak-to-valley, mm.
+struct Motion {
+    z: AngleExtremes,
+    w: AngleExtremes,
+    w_pv_mm: f64,
+}
+
 /// A signal, its grid and the speed.
 struct Context<'a> {
     signal: &'a PathSignal,
@@ -407,10 +415,14 @@ impl Context<'_> {
 
     /// The automatic split (module docs).
     fn auto(&self, limits: &SplitLimits) -> Split {
-        let bandwidths = self.bandwidths(&self.grid.z_mm, None, true);
         let z = &self.signal.z_mm;
         let zero = vec![0.0; z.len()];
-        let alone = self.checks(z, &zero, bandwidths, limits);
+        // The slide's bandwidth figure (a transform on the grid) beside its pass over the points.
+        let (bandwidths, motion) = both(
+            || self.bandwidths(&self.grid.z_mm, None, true),
+            || self.motion(z, &zero),
+        );
+        let alone = self.checks_of(motion, bandwidths, limits);
         if alone.iter().all(Check::passes) {
             return Split {
                 z_slide_mm: z.clone(),
@@ -487,16 +499,31 @@ impl Context<'_> {
 
     /// The six checks of the slide channel `z` and the FTS channel `w` (per point), with the
     /// bandwidth figures `(slide, servo)` of [`Self::bandwidths`].
-    fn checks(
+    fn checks(&self, z: &[f64], w: &[f64], bandwidths: (f64, f64), l: &SplitLimits) -> Vec<Check> {
+        self.checks_of(self.motion(z, w), bandwidths, l)
+    }
+
+    /// What the checks read of the channels `z` and `w` at the points: their largest slopes and
+    /// curvatures against the spindle angle, and W's peak-to-valley, mm.
+    fn motion(&self, z: &[f64], w: &[f64]) -> Motion {
+        let s = self.signal;
+        Motion {
+            z: s.angle_extremes(z),
+            w: s.angle_extremes(w),
+            w_pv_mm: peak_to_valley(w.iter().copied()),
+        }
+    }
+
+    /// [`Self::checks`] of the channels' `motion`.
+    fn checks_of(
         &self,
-        z: &[f64],
-        w: &[f64],
+        motion: Motion,
         (slide_hz, fts_hz): (f64, f64),
         l: &SplitLimits,
     ) -> Vec<Check> {
         let s = self.signal;
         let om = omega(self.rpm);
-        let (ez, ew) = (s.angle_extremes(z), s.angle_extremes(w));
+        let (ez, ew) = (motion.z, motion.w);
         let rho = |i: usize| s.rho_mm.get(i).copied();
         let check = |limit: Limit, value: f64, at: Option<f64>| Check {
             limit,
@@ -516,7 +543,7 @@ impl Context<'_> {
                 rho(ez.curvature_at),
             ),
             check(Limit::SlideBandwidthHz, slide_hz, None),
-            check(Limit::FtsStrokeMm, peak_to_valley(w.iter().copied()), None),
+            check(Limit::FtsStrokeMm, motion.w_pv_mm, None),
             check(Limit::FtsBandwidthHz, fts_hz, None),
             check(
                 Limit::FtsAccelerationMmPerS2,

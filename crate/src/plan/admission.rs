@@ -40,6 +40,9 @@ pub const DEFAULT_MAX_OUTPUT_BYTES: u64 = 4_000_000_000;
 pub struct Limits {
     /// Most points; at most [`MAX_POINTS`].
     pub max_points: u64,
+    /// Most points when the machine dynamics run (they hold the path in memory); at most
+    /// [`dynamics::MAX_POINTS`].
+    pub max_dynamics_points: u64,
     /// Most bytes of the files written together.
     pub max_output_bytes: u64,
     /// Longest estimated time, seconds; `None`: not bounded.
@@ -50,6 +53,7 @@ impl Default for Limits {
     fn default() -> Self {
         Self {
             max_points: MAX_POINTS,
+            max_dynamics_points: dynamics::MAX_POINTS,
             max_output_bytes: DEFAULT_MAX_OUTPUT_BYTES,
             max_seconds: None,
         }
@@ -271,7 +275,7 @@ impl Limits {
                 ),
             ));
         }
-        if cost.passes == 2 && cost.points > dynamics::MAX_POINTS {
+        if cost.passes == 2 && cost.points > limits.max_dynamics_points {
             return Err(FieldError::new(
                 field,
                 feed,
@@ -279,8 +283,8 @@ impl Limits {
                     "gives about {} points; the machine dynamics (a split or machine limits) hold \
                      the path in memory and take at most {}: a feed of at least {} mm/rev",
                     short(points),
-                    dynamics::MAX_POINTS,
-                    at_least(points / dynamics::MAX_POINTS as f64)
+                    limits.max_dynamics_points,
+                    at_least(points / limits.max_dynamics_points as f64)
                 ),
             ));
         }

@@ -10,14 +10,18 @@
 mod common;
 
 use common::{coarse_grid_fts, example_job};
+use spiralcam::dynamics::path_signal::PathSignal;
 use spiralcam::dynamics::split::{Limit, Verdict};
+use spiralcam::dynamics::{CALIBRATION_POINTS, grid_samples};
 use spiralcam::job::Job;
 use spiralcam::job::SplitSpec;
 use spiralcam::job::machine::presets;
 use spiralcam::plan::{Limits, Planner, Sinks};
 use spiralcam::report::Outputs;
 use spiralcam::report::Report;
+use std::f64::consts::TAU;
 use std::ops::ControlFlow;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Plans `job` with its dynamics; returns the report, the program and the servo's table.
 fn plan(job: &Job) -> (Report, String, String) {
@@ -342,6 +346,69 @@ fn a_finishing_path_of_28_4_m_points_is_admitted_with_its_dynamics() {
         .parse()
         .unwrap();
     assert!(least <= said && said <= least * (1.0 + 1e-5), "{e}");
+}
+
+/// The dynamics' grid as the estimate counts it ([`grid_samples`]) against the grid they
+/// compute on (`PathSignal::uniform`): a constant-angle path (exactly), and a constant-arc
+/// one, densest at the rim (within 1 %: the estimate takes the rim's step, the grid the mean
+/// of the first turn).
+#[test]
+fn the_dynamics_estimate_counts_the_samples_of_their_grid() {
+    let signal = |angles: Vec<f64>| PathSignal {
+        rho_mm: vec![1.0; angles.len()],
+        z_mm: vec![0.0; angles.len()],
+        angle_rad: angles,
+    };
+    let steady = signal((0..=50_000).map(|i| TAU * i as f64 / 500.0).collect());
+    let grid = steady.uniform().unwrap().z_mm.len() as f64;
+    assert_eq!(grid, grid_samples(50_001, 100.0, 500.0));
+    // 0.01 mm arcs from 5 mm inwards at 0.05 mm a turn: 3 142 points on the outer turn.
+    let (feed, arc) = (0.05, 0.01);
+    let mut angles = vec![0.0];
+    loop {
+        let theta = *angles.last().unwrap();
+        let rho = 5.0 - feed * theta / TAU;
+        if rho < 0.5 {
+            break;
+        }
+        angles.push(theta + (arc / rho).min(1f64.to_radians()));
+    }
+    let (n, turns) = (angles.len(), angles.last().unwrap() / TAU);
+    let grid = signal(angles).uniform().unwrap().z_mm.len() as f64;
+    let counted = grid_samples(n as u64, turns, TAU * 5.0 / arc);
+    assert!((counted / grid - 1.0).abs() < 0.01, "{counted} vs {grid}");
+    assert!(
+        grid > 1.5 * n as f64,
+        "the grid is denser than the path: {grid} vs {n}"
+    );
+}
+
+/// The estimate's time includes the dynamics', timed by the clock on the calibration path and
+/// scaled by the grid's samples: with a clock that moves 1 µs at each reading, each timed run
+/// takes one tick, so the dynamics take 1.3 µs / 32 768 a sample of their grid (1.3 for a long
+/// path's memory).
+#[test]
+fn the_estimate_times_the_dynamics_on_this_machine() {
+    let readings = AtomicU64::new(0);
+    let clock = move || (readings.fetch_add(1, Ordering::Relaxed) + 1) as f64 * 1e-6;
+    let job = coarse_grid_fts();
+    let planner = Planner::new(&job).unwrap();
+    let cost = planner.cost(Some(&clock)).unwrap();
+    let samples = grid_samples(cost.points, 4.0 / 0.02, 512.0);
+    let dynamics = cost.dynamics_seconds.unwrap();
+    let want = samples * 1.3e-6 / CALIBRATION_POINTS as f64;
+    assert!(
+        (dynamics / want - 1.0).abs() < 0.005,
+        "{dynamics} vs {want}"
+    );
+    assert!(cost.seconds.unwrap() > dynamics);
+    // Not estimated without a clock (the page), nor without the dynamics.
+    assert_eq!(planner.cost(None).unwrap().dynamics_seconds, None);
+    let mut plain = job.clone();
+    plain.strategy.split = None;
+    plain.machine = spiralcam::job::MachineSpec::spindle_only(job.machine.spindle_rpm);
+    let cost = Planner::new(&plain).unwrap().cost(Some(&clock)).unwrap();
+    assert_eq!((cost.passes, cost.dynamics_seconds), (1, None));
 }
 
 /// The slides' bandwidths: a tilted flat asks Z for one cycle per revolution (n/60 Hz; its

@@ -88,6 +88,76 @@ pub const MAX_POINTS: u64 = 30_000_000;
 /// points (16 bytes) are made after their spectra.
 pub const BYTES_PER_POINT: u64 = 112;
 
+/// Points of the synthetic path the dynamics' time is measured on ([`seconds_per_sample`]).
+pub const CALIBRATION_POINTS: usize = 32_768;
+
+/// The time the dynamics of `job` take a sample of their uniform grid on this machine, seconds
+/// by `clock`: their analysis (every stage, with the job's machine and split), the quickest of
+/// three runs on a synthetic constant-angle path of [`CALIBRATION_POINTS`] points, whose grid
+/// has as many samples, times 1.3 for a long path's memory. The time a sample barely changes with the path's length (0.45–0.64 µs measured
+/// from 131 072 to 28.4 M points of the sine grid and 1.8 M of the lens array on this
+/// machine), so the estimate scales it by the grid's samples ([`grid_samples`]). The path
+/// spirals inwards over the outer half of the part at `points_per_rev` (held to 64 … 2048), a
+/// 1 µm tone of 2 and one of 24 cycles a revolution in Z; `None` when the job's split cannot be
+/// made on it (a cutoff above its Nyquist frequency).
+pub fn seconds_per_sample(
+    job: &Job,
+    points_per_rev: f64,
+    clock: &(dyn Fn() -> f64 + Sync),
+) -> Option<f64> {
+    let n = CALIBRATION_POINTS;
+    let per_rev = points_per_rev.clamp(64.0, (n / 16) as f64).round();
+    let radius = job.part.diameter_mm / 2.0;
+    let points: Vec<PathPoint> = (0..n)
+        .map(|i| {
+            let theta = std::f64::consts::TAU * i as f64 / per_rev;
+            let rho = radius * (1.0 - 0.5 * i as f64 / n as f64);
+            let z = 1e-3 * ((2.0 * theta).cos() + (24.0 * theta).sin());
+            let (s, c) = theta.sin_cos();
+            PathPoint {
+                index: i as u64,
+                rho,
+                theta,
+                z,
+                contact: [rho * c, rho * s, z],
+                contact_angle: 0.0,
+                at_arc_end: false,
+            }
+        })
+        .collect();
+    // The quickest of three runs: the first also maps its buffers' pages, and a run on a
+    // shared machine may be interrupted.
+    let mut quickest = f64::INFINITY;
+    for _ in 0..CALIBRATION_RUNS {
+        let start = clock();
+        Dynamics::of_points(job, &points).ok()?;
+        quickest = quickest.min((clock() - start).max(0.0));
+    }
+    Some(quickest / n as f64 * LONG_RECORD_FACTOR)
+}
+
+/// How much longer a sample of a long path's dynamics takes than one of the calibration's,
+/// whose buffers stay in the caches and whose pages are mapped once: 1.2–1.33 measured on this
+/// machine (the sine grid example's 0.8 M points, the lens array's 4 M at constant arc, the
+/// sine grid's 28.4 M).
+const LONG_RECORD_FACTOR: f64 = 1.3;
+
+/// Timed runs of the calibration path ([`seconds_per_sample`]).
+const CALIBRATION_RUNS: usize = 3;
+
+/// The samples the dynamics compute on for a path of `points` points over `revolutions` turns
+/// whose densest turn has `densest_per_rev` points: its uniform grid by
+/// [`PathSignal::uniform`]'s rule (the densest turn's step, at most
+/// [`path_signal::MAX_GRID_PER_POINT`] samples a point), and at least the points themselves.
+pub fn grid_samples(points: u64, revolutions: f64, densest_per_rev: f64) -> f64 {
+    let n = points as f64;
+    let per_rev = densest_per_rev
+        .ceil()
+        .max(path_signal::MIN_SAMPLES_PER_REV as f64);
+    let budget = (path_signal::MAX_GRID_PER_POINT as f64 * n).max(4096.0);
+    (per_rev * revolutions + 1.0).min(budget).max(n)
+}
+
 /// Radius bands of the instantaneous frequency.
 pub const FREQUENCY_BANDS: usize = 32;
 

@@ -13,7 +13,9 @@
 //! the probe's runs are timed as they are compensated (shared out over the cores, each run's
 //! time read on its own thread) and their blocks formatted again and timed on one thread;
 //! compensation runs on every core, formatting on one, and a job with machine dynamics
-//! computes its path twice. The concave-zone
+//! computes its path twice and adds their analysis, timed on a synthetic path and scaled by
+//! their grid's samples ([`dynamics::seconds_per_sample`], [`dynamics::grid_samples`]). The
+//! concave-zone
 //! report and the accuracy analysis are not in the estimate (they have their own bounds:
 //! [`crate::tool::reach::MAX_MEASURED_ZONES`], and the analyses read the path once).
 //!
@@ -111,6 +113,19 @@ impl Planner {
                 Some(n * computed * compensate + n * written * self.block_seconds(&probes, now)?)
             }
         };
+        // The dynamics' analysis, timed on this machine and scaled by their grid's samples: the
+        // densest turn's points from the probes' steps (points per mm × the feed).
+        let dynamics_seconds = match timed {
+            Some((now, _)) if passes == 2 => {
+                let feed = self.job().strategy.feed_mm_per_rev;
+                let densest = probes.iter().map(|p| p.per_mm * feed).fold(0.0, f64::max);
+                let revolutions = self.spiral().revolutions();
+                let samples = dynamics::grid_samples(path_points, revolutions, densest);
+                dynamics::seconds_per_sample(self.job(), densest, now).map(|s| s * samples)
+            }
+            _ => None,
+        };
+        let seconds = seconds.map(|s| s + dynamics_seconds.unwrap_or(0.0));
         let split = self.job().strategy.split.is_some();
         let n = path_points as f64;
         Ok(Cost {
@@ -124,6 +139,7 @@ impl Planner {
             fts_grid_bytes: split
                 .then(|| crate::nc::fts_grid::max_bytes(dynamics::fts_grid::MAX_ENTRIES)),
             seconds,
+            dynamics_seconds,
         })
     }
 

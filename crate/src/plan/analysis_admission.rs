@@ -88,7 +88,9 @@ impl Planner {
             );
             return refuse(points / max_points as f64, what);
         }
-        let per_point = cost.seconds.unwrap_or(0.0) / points.max(1.0);
+        // The analysis reads the path without the machine dynamics.
+        let planning = cost.seconds.unwrap_or(0.0) - cost.dynamics_seconds.unwrap_or(0.0);
+        let per_point = planning / points.max(1.0);
         let (cost, timed) = self.segment_seconds(clock)?;
         let seconds = points * (per_point + cost.segment / workers() as f64);
         let max_seconds = limits.max_seconds;

@@ -46,8 +46,13 @@ pub struct Cost {
     pub fts_grid_bytes: Option<u64>,
     /// Memory the machine dynamics hold, bytes, when they run.
     pub dynamics_memory_bytes: Option<u64>,
-    /// Time to plan and write, seconds (with a clock; none in the browser's estimate).
+    /// Time to plan and write, seconds (with a clock; none in the browser's estimate), the
+    /// machine dynamics' analysis included.
     pub seconds: Option<f64>,
+    /// Of [`Self::seconds`], the machine dynamics' analysis, when they run: timed on a short
+    /// synthetic path on this machine and scaled by their grid's samples
+    /// ([`crate::dynamics::seconds_per_sample`], [`crate::dynamics::grid_samples`]).
+    pub dynamics_seconds: Option<f64>,
 }
 
 /// Which files a run writes.

@@ -135,6 +135,7 @@ pub fn run(words: &[String]) -> Result<(), Failure> {
     bar::end();
     let mut report = planned.map_err(run_err)?;
     cost.seconds = cost.seconds.map(|s| (s * 1e3).round() / 1e3);
+    cost.dynamics_seconds = cost.dynamics_seconds.map(|s| (s * 1e3).round() / 1e3);
     report.estimate = Some(cost);
     if let Some(children) = children {
         children.commit()?;

@@ -33,7 +33,7 @@ use crate::dynamics::axis_checks::{AxisReport, AxisSample, check_axes};
 use crate::dynamics::fts_grid::{FtsGrid, FtsGridReport, ServoPath};
 use crate::dynamics::path_signal::{PathSignal, UniformSignal, extremes, hz, peak_to_valley};
 use crate::dynamics::spectrum::{
-    BandFrequency, Spectrum, amplitude_spectrum_on, highest_significant_cycles_per_rev,
+    BandFrequency, Spectrum, amplitude_spectrum_and_band_on, highest_significant_cycles_per_rev,
     instantaneous_frequency_on,
 };
 use crate::dynamics::split::{Limit, SplitError, SplitLimits, Verdict, split_on};
@@ -497,9 +497,11 @@ impl Dynamics {
         // The path on its uniform grid, resampled once for every analysis below.
         let mut uniform = signal.uniform();
         let grid = uniform.as_ref().ok();
-        let spectrum = grid.map_or_else(Spectrum::default, |g| {
-            amplitude_spectrum_on(g, rpm, SPECTRUM_BINS)
-        });
+        // The spectrum, and Z's highest significant frequency read off it (cycles a revolution).
+        let (spectrum, z_band_cpr) = grid.map_or_else(
+            || (Spectrum::default(), None),
+            |g| amplitude_spectrum_and_band_on(g, rpm, SPECTRUM_BINS),
+        );
         let instantaneous_frequency = grid.map_or_else(Vec::new, |g| {
             instantaneous_frequency_on(g, rpm, FREQUENCY_BANDS)
         });
@@ -518,7 +520,7 @@ impl Dynamics {
             None => (None, None, None),
             Some(spec) => {
                 let limits = split_limits(machine);
-                let s = split_on(signal, &uniform, spec, rpm, limits.as_ref())?;
+                let s = split_on(signal, &uniform, z_band_cpr, spec, rpm, limits.as_ref())?;
                 let report = SplitReport {
                     spec: spec.clone(),
                     cutoff_hz: s.cutoff_hz,
@@ -540,7 +542,7 @@ impl Dynamics {
             || {
                 grid.map(|g| match &z_slide {
                     Some(z) => needed_hz(g, signal.uniform_values(z)),
-                    None => needed_hz(g, g.z_mm.clone()),
+                    None => z_band_cpr.map_or_else(|| needed_hz(g, g.z_mm.clone()), |k| hz(k, rpm)),
                 })
             },
         );

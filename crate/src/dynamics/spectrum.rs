@@ -265,13 +265,26 @@ pub fn amplitude_spectrum(signal: &PathSignal, spindle_rpm: f64, max_bins: usize
 
 /// [`amplitude_spectrum`] of a signal's uniform grid ([`PathSignal::uniform`]).
 pub fn amplitude_spectrum_on(grid: &UniformSignal, spindle_rpm: f64, max_bins: usize) -> Spectrum {
+    amplitude_spectrum_and_band_on(grid, spindle_rpm, max_bins).0
+}
+
+/// [`amplitude_spectrum_on`], and the highest significant frequency of the grid's heights,
+/// cycles per revolution, read off the same amplitudes: what
+/// [`highest_significant_cycles_per_rev`] of `grid.z_mm` gives, to the bit, without its
+/// transform (`None` where the speed is not a positive number).
+pub fn amplitude_spectrum_and_band_on(
+    grid: &UniformSignal,
+    spindle_rpm: f64,
+    max_bins: usize,
+) -> (Spectrum, Option<f64>) {
     if !positive_speed(spindle_rpm) {
-        return Spectrum::default();
+        return (Spectrum::default(), None);
     }
     let (samples, per_rev) = (grid.len(), grid.samples_per_rev);
     let r = residual(grid, &grid.z_mm);
     let len = fast_length(samples, false);
     let a = hann_amplitudes(r, len);
+    let band = highest_significant_of(&a, per_rev, len);
     let cpr_per_bin = per_rev as f64 / len as f64;
     let to_hz = |bin: f64| hz(bin * cpr_per_bin, spindle_rpm);
     let group = a.len().div_ceil(max_bins.max(1)).max(1);
@@ -289,7 +302,7 @@ pub fn amplitude_spectrum_on(grid: &UniformSignal, spindle_rpm: f64, max_bins: u
             amplitude_um.push(v * 1e3);
         }
     }
-    Spectrum {
+    let spectrum = Spectrum {
         spindle_rpm,
         resolution_hz: to_hz(1.0),
         freq_hz,
@@ -305,7 +318,8 @@ pub fn amplitude_spectrum_on(grid: &UniformSignal, spindle_rpm: f64, max_bins: u
                 }
             })
             .collect(),
-    }
+    };
+    (spectrum, Some(band))
 }
 
 /// The highest frequency, cycles per revolution, at which the Hann spectrum of the
@@ -317,11 +331,17 @@ pub fn amplitude_spectrum_on(grid: &UniformSignal, spindle_rpm: f64, max_bins: u
 pub fn highest_significant_cycles_per_rev(grid: &UniformSignal, values: Vec<f64>) -> f64 {
     let len = fast_length(values.len(), false);
     let a = hann_amplitudes(residual_of(grid, values), len);
+    highest_significant_of(&a, grid.samples_per_rev, len)
+}
+
+/// [`highest_significant_cycles_per_rev`] of the Hann amplitudes `a` of a record of
+/// `samples_per_rev` padded to `len`.
+fn highest_significant_of(a: &[f64], samples_per_rev: usize, len: usize) -> f64 {
     let top = a.iter().copied().fold(0.0, f64::max);
     let floor = (SIGNIFICANT_FRACTION * top).max(NEGLIGIBLE_MM);
     a.iter()
         .rposition(|&v| v >= floor)
-        .map_or(0.0, |j| j as f64 * grid.samples_per_rev as f64 / len as f64)
+        .map_or(0.0, |j| j as f64 * samples_per_rev as f64 / len as f64)
 }
 
 /// The smallest length `2^a·3^b ≥ n` (even when `even`): rustfft transforms such lengths by
@@ -500,6 +520,26 @@ fn positive_speed(spindle_rpm: f64) -> bool {
 mod tests {
     use super::*;
     use crate::dynamics::path_signal::tests::spiral;
+
+    #[test]
+    fn the_spectrum_gives_the_heights_band_figure_to_the_bit() {
+        // Tones of 3, 17.5 and 40 cycles a revolution with amplitudes 1, 0.02 and 0.004 µm
+        // (the last below 1 % of the largest: the figure is 17.5's, within the window's
+        // spread), then a flat record (no significant frequency: 0).
+        let tones = |_: f64, t: f64| {
+            1e-3 * (3.0 * t).sin() + 2e-5 * (17.5 * t).cos() + 4e-6 * (40.0 * t).sin()
+        };
+        for z in [&tones as &dyn Fn(f64, f64) -> f64, &|_, _| 0.0] {
+            let g = spiral(40.0, 128, 4.0, 0.01, z).uniform().unwrap();
+            let (_, band) = amplitude_spectrum_and_band_on(&g, 600.0, 256);
+            let own = highest_significant_cycles_per_rev(&g, g.z_mm.clone());
+            assert_eq!(band.map(f64::to_bits), Some(own.to_bits()));
+        }
+        let g = spiral(40.0, 128, 4.0, 0.01, tones).uniform().unwrap();
+        let k = amplitude_spectrum_and_band_on(&g, 600.0, 256).1.unwrap();
+        assert!((k - 17.5).abs() < 0.3, "{k}");
+        assert_eq!(amplitude_spectrum_and_band_on(&g, 0.0, 256).1, None);
+    }
 
     #[test]
     fn real_transforms_are_the_direct_sums() {

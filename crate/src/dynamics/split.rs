@@ -296,14 +296,18 @@ pub fn split(
     spindle_rpm: f64,
     limits: Option<&SplitLimits>,
 ) -> Result<Split, SplitError> {
-    split_on(signal, &signal.uniform(), spec, spindle_rpm, limits)
+    split_on(signal, &signal.uniform(), None, spec, spindle_rpm, limits)
 }
 
 /// [`split`] with the signal's uniform grid given ([`PathSignal::uniform`]), so that a caller
-/// analysing the signal otherwise resamples it once.
+/// analysing the signal otherwise resamples it once, and where known the highest significant
+/// frequency of the grid's heights, cycles per revolution (`z_band_cpr`, as
+/// [`crate::dynamics::spectrum::amplitude_spectrum_and_band_on`] gives it with the spectrum),
+/// which the automatic split then does not transform again.
 pub fn split_on(
     signal: &PathSignal,
     grid: &Result<UniformSignal, SignalError>,
+    z_band_cpr: Option<f64>,
     spec: &SplitSpec,
     spindle_rpm: f64,
     limits: Option<&SplitLimits>,
@@ -316,6 +320,7 @@ pub fn split_on(
     let ctx = Context {
         signal,
         grid,
+        z_band_cpr,
         rpm: spindle_rpm,
     };
     match spec {
@@ -374,10 +379,12 @@ struct Motion {
     w_pv_mm: f64,
 }
 
-/// A signal, its grid and the speed.
+/// A signal, its grid (with its heights' highest significant frequency where known) and the
+/// speed.
 struct Context<'a> {
     signal: &'a PathSignal,
     grid: &'a UniformSignal,
+    z_band_cpr: Option<f64>,
     rpm: f64,
 }
 
@@ -417,9 +424,13 @@ impl Context<'_> {
     fn auto(&self, limits: &SplitLimits) -> Split {
         let z = &self.signal.z_mm;
         let zero = vec![0.0; z.len()];
-        // The slide's bandwidth figure (a transform on the grid) beside its pass over the points.
+        // The slide's bandwidth figure (known, or a transform on the grid) beside its pass over
+        // the points.
         let (bandwidths, motion) = both(
-            || self.bandwidths(&self.grid.z_mm, None, true),
+            || match self.z_band_cpr {
+                Some(k) => (hz(k, self.rpm), 0.0),
+                None => self.bandwidths(&self.grid.z_mm, None, true),
+            },
             || self.motion(z, &zero),
         );
         let alone = self.checks_of(motion, bandwidths, limits);

@@ -94,12 +94,12 @@ pub const CALIBRATION_POINTS: usize = 32_768;
 /// The time the dynamics of `job` take a sample of their uniform grid on this machine, seconds
 /// by `clock`: their analysis (every stage, with the job's machine and split), the quickest of
 /// three runs on a synthetic constant-angle path of [`CALIBRATION_POINTS`] points, whose grid
-/// has as many samples, times 1.3 for a long path's memory. The time a sample barely changes with the path's length (0.45–0.64 µs measured
-/// from 131 072 to 28.4 M points of the sine grid and 1.8 M of the lens array on this
-/// machine), so the estimate scales it by the grid's samples ([`grid_samples`]). The path
-/// spirals inwards over the outer half of the part at `points_per_rev` (held to 64 … 2048), a
-/// 1 µm tone of 2 and one of 24 cycles a revolution in Z; `None` when the job's split cannot be
-/// made on it (a cutoff above its Nyquist frequency).
+/// has as many samples, times 1.3 for a long path's memory. The time a sample barely changes
+/// with the path's length (0.45–0.64 µs measured from 131 072 to 28.4 M points of the sine grid
+/// and 1.8 M of the lens array on this machine), so the estimate scales it by the grid's
+/// samples ([`grid_samples`]). The path spirals inwards over the outer half of the part at
+/// `points_per_rev` (held to 64 … 2048), a 1 µm tone of 2 and one of 24 cycles a revolution in
+/// Z; `None` when the job's split cannot be made on it (a cutoff above its Nyquist frequency).
 pub fn seconds_per_sample(
     job: &Job,
     points_per_rev: f64,

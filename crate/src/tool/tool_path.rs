@@ -42,7 +42,14 @@ fn even_batch(total: u64, workers: usize, long: bool) -> u64 {
         LONG_BATCH
     } else {
         BATCH
-    } as u64;
+    };
+    batch_within(total, most, workers)
+}
+
+/// The points of a batch of at most `most`, a multiple of [`WARM_RUN`], for `total` points cut
+/// into as many batches as a multiple of `workers`, all of a size but the last.
+fn batch_within(total: u64, most: usize, workers: usize) -> u64 {
+    let most = most as u64;
     let batches = total.div_ceil(most).next_multiple_of(workers as u64).max(1);
     // At least one run: `total` is an estimate on some spirals, and may be short.
     let even = total.div_ceil(batches).max(1).next_multiple_of(WARM_RUN);
@@ -59,10 +66,7 @@ const LINE_BATCH: usize = 2 * LONG_BATCH;
 /// The points of a batch for a walk of `total` points computed line by line on several
 /// workers: at most [`LINE_BATCH`], a multiple of [`WARM_RUN`], the batches of a size.
 fn line_batch(total: u64) -> u64 {
-    let most = LINE_BATCH as u64;
-    let batches = total.div_ceil(most).max(1);
-    let even = total.div_ceil(batches).max(1).next_multiple_of(WARM_RUN);
-    even.min(most)
+    batch_within(total, LINE_BATCH, 1)
 }
 
 /// The path is compensated in runs of this many points, aligned on the index: the first point

@@ -33,8 +33,8 @@ use crate::dynamics::axis_checks::{AxisReport, AxisSample, check_axes};
 use crate::dynamics::fts_grid::{FtsGrid, FtsGridReport, ServoPath};
 use crate::dynamics::path_signal::{PathSignal, UniformSignal, extremes, hz, peak_to_valley};
 use crate::dynamics::spectrum::{
-    BandFrequency, Spectrum, amplitude_spectrum_and_band_on, highest_significant_cycles_per_rev,
-    instantaneous_frequency_on,
+    BandFrequency, Spectrum, amplitude_spectrum_and_bands_on, highest_significant_cycles_per_rev,
+    highest_significant_cycles_per_rev_beside, instantaneous_frequency_on,
 };
 use crate::dynamics::split::{Limit, SplitError, SplitLimits, Verdict, split_on};
 use crate::job::Job;
@@ -496,26 +496,27 @@ impl Dynamics {
         let signal = &path.signal;
         // The path on its uniform grid, resampled once for every analysis below.
         let mut uniform = signal.uniform();
-        let grid = uniform.as_ref().ok();
-        // The spectrum, and Z's highest significant frequency read off it (cycles a revolution).
-        let (spectrum, z_band_cpr) = grid.map_or_else(
-            || (Spectrum::default(), None),
-            |g| amplitude_spectrum_and_band_on(g, rpm, SPECTRUM_BINS),
+        let instantaneous_frequency = uniform.as_ref().map_or_else(
+            |_| Vec::new(),
+            |g| instantaneous_frequency_on(g, rpm, FREQUENCY_BANDS),
         );
-        let instantaneous_frequency = grid.map_or_else(Vec::new, |g| {
-            instantaneous_frequency_on(g, rpm, FREQUENCY_BANDS)
-        });
+        // The spectrum with Z's highest significant frequency read off it (cycles a
+        // revolution), and X's bandwidth figure, which takes the grid's radii themselves
+        // (nothing after needs them): two transforms of one length on the two cores.
+        let (spectrum, z_band_cpr, x_needed_hz) = match uniform.as_mut() {
+            Ok(g) => {
+                let rho = std::mem::take(&mut g.rho_mm);
+                let (s, z_band, x_band) =
+                    amplitude_spectrum_and_bands_on(g, rho, rpm, SPECTRUM_BINS);
+                (s, z_band, Some(hz(x_band, rpm)))
+            }
+            Err(_) => (Spectrum::default(), None, None),
+        };
         // A channel's highest significant frequency on the grid, Hz, its values handed over to
-        // the transform. X's comes before the split, and takes the grid's radii themselves:
-        // nothing after needs them.
+        // the transform.
         let needed_hz = |g: &UniformSignal, values: Vec<f64>| {
             hz(highest_significant_cycles_per_rev(g, values), rpm)
         };
-        let x_needed_hz = uniform.as_mut().ok().map(|g| {
-            let rho = std::mem::take(&mut g.rho_mm);
-            needed_hz(g, rho)
-        });
-        let grid = uniform.as_ref().ok();
         let (split_report, z_slide, w_fts) = match &job.strategy.split {
             None => (None, None, None),
             Some(spec) => {
@@ -531,6 +532,13 @@ impl Dynamics {
                 (Some(report), Some(s.z_slide_mm), Some(s.w_fts_mm))
             }
         };
+        // A split path's Z figure takes the slide's share resampled on the grid: the grid's own
+        // heights are let go first (8 bytes a sample where the dynamics hold the most).
+        let grid_samples = uniform.as_ref().map_or(0, UniformSignal::len);
+        if let (Some(_), Ok(g)) = (&z_slide, uniform.as_mut()) {
+            g.z_mm = Vec::new();
+        }
+        let grid = uniform.as_ref().ok();
         let samples = (0..path.theta.len()).map(|i| {
             let slide = z_slide.as_ref().and_then(|z| z.get(i)).copied();
             AxisSample::new(path.theta[i], signal.rho_mm[i], signal.z_mm[i], slide)
@@ -541,7 +549,12 @@ impl Dynamics {
             || check_axes(samples, machine),
             || {
                 grid.map(|g| match &z_slide {
-                    Some(z) => needed_hz(g, signal.uniform_values(z)),
+                    Some(z) => hz(
+                        highest_significant_cycles_per_rev_beside(g, grid_samples, || {
+                            signal.uniform_values(z)
+                        }),
+                        rpm,
+                    ),
                     None => z_band_cpr.map_or_else(|| needed_hz(g, g.z_mm.clone()), |k| hz(k, rpm)),
                 })
             },

@@ -60,12 +60,13 @@
 //! for a complex transform in place with its scratch (the dynamics' peak memory).
 
 use crate::dynamics::path_signal::{PathSignal, UniformSignal, hz, residual_gain};
-use crate::parallel::fill_each;
-use realfft::{ComplexToReal, FftError, RealFftPlanner};
+use crate::parallel::{both, fill_each};
+use realfft::{ComplexToReal, FftError, RealFftPlanner, RealToComplex};
 use rustfft::num_complex::Complex;
 use serde::Serialize;
 use std::convert::Infallible;
 use std::f64::consts::{PI, TAU};
+use std::sync::Arc;
 
 /// The most peaks listed.
 pub const MAX_PEAKS: usize = 8;
@@ -127,7 +128,16 @@ pub struct BandFrequency {
 /// bins 0 … len/2 (bin j at j/len cycles per sample), in the unit of `x`. A longer `len` samples
 /// the same spectrum more finely (every N/len of the record's bins). `x` is let go before the
 /// transform.
-pub fn hann_amplitudes(mut x: Vec<f64>, len: usize) -> Vec<f64> {
+pub fn hann_amplitudes(x: Vec<f64>, len: usize) -> Vec<f64> {
+    if x.len() < 2 {
+        return Vec::new();
+    }
+    let len = len.max(x.len());
+    hann_amplitudes_by(&*forward_plan(len), x)
+}
+
+/// [`hann_amplitudes`] padded to the length of the transform `forward` (at least `x`'s).
+fn hann_amplitudes_by(forward: &dyn RealToComplex<f64>, mut x: Vec<f64>) -> Vec<f64> {
     let n = x.len();
     if n < 2 {
         return Vec::new();
@@ -139,28 +149,44 @@ pub fn hann_amplitudes(mut x: Vec<f64>, len: usize) -> Vec<f64> {
         gain += w;
         *v *= w;
     }
-    real_spectrum(x, len.max(n))
+    real_spectrum_by(forward, x)
         .iter()
         .enumerate()
         .map(|(j, c)| c.norm() * if j == 0 { 1.0 } else { 2.0 } / gain)
         .collect()
 }
 
-/// The spectrum of the real record `x` padded with zeros to `len ≥ x.len()` samples, bins
-/// 0 … len/2 (the others are their conjugates), by a real-input transform (`realfft`: for an
-/// even length, a complex transform of half the length; 16 bytes a sample of the record with
-/// its output, against 48 for a complex transform in place with its scratch). `x` is its
-/// scratch and is let go.
-pub(crate) fn real_spectrum(mut x: Vec<f64>, len: usize) -> Vec<Complex<f64>> {
+/// The spectrum of the real record `x` padded with zeros to the length L of the transform
+/// `forward` (at least `x`'s), bins 0 … L/2 (the others are their conjugates), by a real-input
+/// transform (`realfft`: for an even length, a complex transform of half the length; 16 bytes
+/// a sample of the record with its output, against 48 for a complex transform in place with
+/// its scratch). `x` is its scratch and is let go.
+pub(crate) fn real_spectrum_by(
+    forward: &dyn RealToComplex<f64>,
+    mut x: Vec<f64>,
+) -> Vec<Complex<f64>> {
+    let len = forward.len();
     // Grown to the padded length exactly: `resize` alone would double the record's capacity.
     x.reserve_exact(len.saturating_sub(x.len()));
     x.resize(len, 0.0);
-    let forward = RealFftPlanner::<f64>::new().plan_fft_forward(len);
     let mut out = forward.make_output_vec();
     // Buffers sized by the plan itself: the transform cannot refuse them.
     let done = forward.process(&mut x, &mut out);
     debug_assert!(done.is_ok());
     out
+}
+
+/// The forward real-input transform of `len` samples. Making it costs about as much as
+/// running it (its twiddle factors, a sine and cosine each: 0.37 s against 0.31–0.35 s at
+/// 2.9·10⁷ samples on the 2-vCPU build machine), so the callers here make it on a second core
+/// while they prepare the record ([`both`]), and share it between records of one length.
+pub(crate) fn forward_plan(len: usize) -> Arc<dyn RealToComplex<f64>> {
+    RealFftPlanner::<f64>::new().plan_fft_forward(len)
+}
+
+/// The inverse real-input transform of `len` samples (made as [`forward_plan`]).
+pub(crate) fn inverse_plan(len: usize) -> Arc<dyn ComplexToReal<f64>> {
+    RealFftPlanner::<f64>::new().plan_fft_inverse(len)
 }
 
 /// The inverse real-input transform, unscaled, of the spectrum `bins` (0 … len/2) by `inverse`
@@ -280,11 +306,68 @@ pub fn amplitude_spectrum_and_band_on(
     if !positive_speed(spindle_rpm) {
         return (Spectrum::default(), None);
     }
+    let len = fast_length(grid.len(), false);
+    let (r, forward) = both(|| residual(grid, &grid.z_mm), || forward_plan(len));
+    let a = hann_amplitudes_by(&*forward, r);
+    drop(forward);
+    spectrum_of(grid, &a, len, spindle_rpm, max_bins)
+}
+
+/// [`amplitude_spectrum_and_band_on`], and [`highest_significant_cycles_per_rev`] of `values`
+/// (one a grid sample, handed over), each to the bit: the two records prepared one after the
+/// other while the transform of their common length is made on a second core, then
+/// transformed on two cores by that one transform.
+pub fn amplitude_spectrum_and_bands_on(
+    grid: &UniformSignal,
+    values: Vec<f64>,
+    spindle_rpm: f64,
+    max_bins: usize,
+) -> (Spectrum, Option<f64>, f64) {
+    let len = fast_length(grid.len(), false);
+    if values.len() != grid.len() {
+        let (spectrum, band) = amplitude_spectrum_and_band_on(grid, spindle_rpm, max_bins);
+        return (
+            spectrum,
+            band,
+            highest_significant_cycles_per_rev(grid, values),
+        );
+    }
+    let ((heights, values), forward) = both(
+        || {
+            let heights = positive_speed(spindle_rpm).then(|| residual(grid, &grid.z_mm));
+            (heights, residual_of(grid, values))
+        },
+        || forward_plan(len),
+    );
+    let (a, values_band) = both(
+        || heights.map(|r| hann_amplitudes_by(&*forward, r)),
+        || {
+            highest_significant_of(
+                &hann_amplitudes_by(&*forward, values),
+                grid.samples_per_rev,
+                len,
+            )
+        },
+    );
+    drop(forward);
+    let (spectrum, band) = match a {
+        Some(a) => spectrum_of(grid, &a, len, spindle_rpm, max_bins),
+        None => (Spectrum::default(), None),
+    };
+    (spectrum, band, values_band)
+}
+
+/// The spectrum of the Hann amplitudes `a` of the heights' residual on `grid` padded to `len`
+/// samples, decimated to `max_bins`, and the heights' highest significant frequency.
+fn spectrum_of(
+    grid: &UniformSignal,
+    a: &[f64],
+    len: usize,
+    spindle_rpm: f64,
+    max_bins: usize,
+) -> (Spectrum, Option<f64>) {
     let (samples, per_rev) = (grid.len(), grid.samples_per_rev);
-    let r = residual(grid, &grid.z_mm);
-    let len = fast_length(samples, false);
-    let a = hann_amplitudes(r, len);
-    let band = highest_significant_of(&a, per_rev, len);
+    let band = highest_significant_of(a, per_rev, len);
     let cpr_per_bin = per_rev as f64 / len as f64;
     let to_hz = |bin: f64| hz(bin * cpr_per_bin, spindle_rpm);
     let group = a.len().div_ceil(max_bins.max(1)).max(1);
@@ -307,7 +390,7 @@ pub fn amplitude_spectrum_and_band_on(
         resolution_hz: to_hz(1.0),
         freq_hz,
         amplitude_um,
-        peaks: peaks(&a, samples as f64 / len as f64)
+        peaks: peaks(a, samples as f64 / len as f64)
             .into_iter()
             .map(|(bin, amp)| {
                 let gain = residual_gain(bin * cpr_per_bin, per_rev);
@@ -327,10 +410,35 @@ pub fn amplitude_spectrum_and_band_on(
 /// largest amplitude (and 1 pm); 0 when there is none. The bandwidth figure of a channel. The
 /// record is padded to a [`fast_length`] (at most 1/8 longer, so the spectrum is sampled a
 /// little more finely than its bins, and the transform is not Bluestein's). `values` are
-/// handed over: the transform takes their memory.
+/// handed over: the transform takes their memory. Its plan is made after their residual, not
+/// beside it: the channels' figures come where the dynamics hold the most (module docs of
+/// [`crate::dynamics`]).
 pub fn highest_significant_cycles_per_rev(grid: &UniformSignal, values: Vec<f64>) -> f64 {
     let len = fast_length(values.len(), false);
     let a = hann_amplitudes(residual_of(grid, values), len);
+    highest_significant_of(&a, grid.samples_per_rev, len)
+}
+
+/// [`highest_significant_cycles_per_rev`] of the values `make` gives, one a grid sample
+/// (`samples` of them expected), to the bit: they are made and their residual taken while the
+/// transform is made on a second core. For a channel's figure where the dynamics hold less than
+/// at their peak: the transform's plan (12 bytes a sample) is held beside the making.
+pub fn highest_significant_cycles_per_rev_beside(
+    grid: &UniformSignal,
+    samples: usize,
+    make: impl FnOnce() -> Vec<f64>,
+) -> f64 {
+    let (r, forward) = both(
+        || residual_of(grid, make()),
+        || forward_plan(fast_length(samples, false)),
+    );
+    let len = fast_length(r.len(), false);
+    let a = if forward.len() == len {
+        hann_amplitudes_by(&*forward, r)
+    } else {
+        drop(forward);
+        hann_amplitudes(r, len)
+    };
     highest_significant_of(&a, grid.samples_per_rev, len)
 }
 
@@ -369,6 +477,27 @@ pub fn fast_length(n: usize, even: bool) -> usize {
 /// by a raised cosine and the record padded with [`PAD_TAPERS`] times as many zeros or more
 /// (with as many as it has samples if `taper` is 0), to a [`fast_length`] (module docs).
 pub fn analytic_signal(x: Vec<f64>, taper: usize) -> (Vec<f64>, Vec<f64>) {
+    let forward = forward_plan(analytic_length(x.len(), taper));
+    analytic_signal_by(forward, x, taper)
+}
+
+/// The length of the transforms of [`analytic_signal`] for `n` samples rolled off over `taper`.
+fn analytic_length(n: usize, taper: usize) -> usize {
+    let taper = taper.min(n / 2);
+    if taper > 0 {
+        fast_length(n + PAD_TAPERS * taper, true)
+    } else {
+        fast_length(2 * n, true)
+    }
+}
+
+/// [`analytic_signal`] by the transform `forward` of its length ([`analytic_length`]), let go
+/// before the inverse transform is made.
+fn analytic_signal_by(
+    forward: Arc<dyn RealToComplex<f64>>,
+    x: Vec<f64>,
+    taper: usize,
+) -> (Vec<f64>, Vec<f64>) {
     let n = x.len();
     let taper = taper.min(n / 2);
     let roll = |j: usize| {
@@ -379,11 +508,7 @@ pub fn analytic_signal(x: Vec<f64>, taper: usize) -> (Vec<f64>, Vec<f64>) {
             1.0
         }
     };
-    let len = if taper > 0 {
-        fast_length(n + PAD_TAPERS * taper, true)
-    } else {
-        fast_length(2 * n, true)
-    };
+    let len = forward.len();
     let mut rolled = x;
     rolled
         .iter_mut()
@@ -391,7 +516,8 @@ pub fn analytic_signal(x: Vec<f64>, taper: usize) -> (Vec<f64>, Vec<f64>) {
         .for_each(|(j, v)| *v *= roll(j));
     let mut record = Vec::with_capacity(len);
     record.extend_from_slice(&rolled);
-    let mut bins = real_spectrum(record, len);
+    let mut bins = real_spectrum_by(&*forward, record);
+    drop(forward);
     let half = len / 2;
     for (j, c) in bins.iter_mut().enumerate() {
         *c = if j == 0 || j == half {
@@ -400,7 +526,7 @@ pub fn analytic_signal(x: Vec<f64>, taper: usize) -> (Vec<f64>, Vec<f64>) {
             Complex::new(c.im, -c.re) / len as f64
         };
     }
-    let inverse = RealFftPlanner::<f64>::new().plan_fft_inverse(len);
+    let inverse = inverse_plan(len);
     let mut hilbert = real_inverse(&*inverse, bins);
     hilbert.truncate(n);
     (rolled, hilbert)
@@ -434,7 +560,10 @@ pub fn instantaneous_frequency_on(
     } else {
         0
     };
-    let (re, im) = analytic_signal(residual(grid, &grid.z_mm), skip);
+    // The residual taken while the forward transform is made on a second core.
+    let len = analytic_length(grid.len(), skip);
+    let (r, forward) = both(|| residual(grid, &grid.z_mm), || forward_plan(len));
+    let (re, im) = analytic_signal_by(forward, r, skip);
     let rho_max = grid.rho_mm.iter().copied().fold(0.0, f64::max);
     let width = rho_max / bands as f64;
     // The band of the pair of samples j, j + 1.
@@ -531,14 +660,33 @@ mod tests {
         };
         for z in [&tones as &dyn Fn(f64, f64) -> f64, &|_, _| 0.0] {
             let g = spiral(40.0, 128, 4.0, 0.01, z).uniform().unwrap();
-            let (_, band) = amplitude_spectrum_and_band_on(&g, 600.0, 256);
+            let (spectrum, band) = amplitude_spectrum_and_band_on(&g, 600.0, 256);
             let own = highest_significant_cycles_per_rev(&g, g.z_mm.clone());
             assert_eq!(band.map(f64::to_bits), Some(own.to_bits()));
+            // The same with the radii's figure beside it, by one shared transform on two
+            // cores, and each figure with its transform made beside its record: to the bit.
+            let radii = highest_significant_cycles_per_rev(&g, g.rho_mm.clone());
+            let both = amplitude_spectrum_and_bands_on(&g, g.rho_mm.clone(), 600.0, 256);
+            assert_eq!(both.0, spectrum);
+            assert_eq!(both.1.map(f64::to_bits), band.map(f64::to_bits));
+            assert_eq!(both.2.to_bits(), radii.to_bits());
+            for values in [&g.z_mm, &g.rho_mm] {
+                let serial = highest_significant_cycles_per_rev(&g, values.clone());
+                let beside =
+                    highest_significant_cycles_per_rev_beside(&g, g.len(), || values.clone());
+                assert_eq!(beside.to_bits(), serial.to_bits());
+            }
         }
         let g = spiral(40.0, 128, 4.0, 0.01, tones).uniform().unwrap();
         let k = amplitude_spectrum_and_band_on(&g, 600.0, 256).1.unwrap();
         assert!((k - 17.5).abs() < 0.3, "{k}");
         assert_eq!(amplitude_spectrum_and_band_on(&g, 0.0, 256).1, None);
+        // Without a speed there is no spectrum, but the other figure still is.
+        let (none, no_band, radii) =
+            amplitude_spectrum_and_bands_on(&g, g.rho_mm.clone(), 0.0, 256);
+        assert_eq!((none, no_band), (Spectrum::default(), None));
+        let own = highest_significant_cycles_per_rev(&g, g.rho_mm.clone());
+        assert_eq!(radii.to_bits(), own.to_bits());
     }
 
     #[test]
@@ -556,7 +704,7 @@ mod tests {
             (20, 24),
         ] {
             let x: Vec<f64> = (0..n).map(|j| ((j * j) as f64 * 0.7).sin() + 0.1).collect();
-            let bins = real_spectrum(x.clone(), len);
+            let bins = real_spectrum_by(&*forward_plan(len), x.clone());
             assert_eq!(bins.len(), len / 2 + 1);
             for (k, b) in bins.iter().enumerate() {
                 let direct: Complex<f64> = (x.iter().enumerate())
@@ -564,7 +712,7 @@ mod tests {
                     .sum();
                 assert!((b - direct).norm() < 1e-13, "n {n}, len {len}, bin {k}");
             }
-            let inverse = RealFftPlanner::<f64>::new().plan_fft_inverse(len);
+            let inverse = inverse_plan(len);
             let back = real_inverse(&*inverse, bins);
             for (j, v) in back.iter().enumerate() {
                 let want = x.get(j).copied().unwrap_or(0.0) * len as f64;

@@ -52,12 +52,13 @@ use crate::dynamics::path_signal::{
     AngleExtremes, PathSignal, SignalError, UniformSignal, hz, omega, peak_to_valley,
 };
 use crate::dynamics::spectrum::{
-    fast_length, highest_significant_cycles_per_rev, real_inverse, real_spectrum,
+    fast_length, forward_plan, highest_significant_cycles_per_rev_beside, inverse_plan,
+    real_inverse, real_spectrum_by,
 };
 use crate::field::{FieldError, positive};
 use crate::job::SplitSpec;
 use crate::parallel::both;
-use realfft::{ComplexToReal, RealFftPlanner};
+use realfft::ComplexToReal;
 use rustfft::num_complex::Complex;
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
@@ -238,10 +239,19 @@ impl LowPass {
     fn new(grid: &UniformSignal) -> Self {
         let head = EXTENSION_REVS * grid.samples_per_rev;
         let len = fast_length(grid.len() + 2 * head, false);
-        let extended = extend(grid, head, len - grid.len() - head);
+        // The record extended while its transform is made on a second core, then transformed
+        // while the inverse is made there.
+        let (extended, forward) = both(
+            || extend(grid, head, len - grid.len() - head),
+            || forward_plan(len),
+        );
+        let (spectrum, inverse) = both(
+            || real_spectrum_by(&*forward, extended),
+            || inverse_plan(len),
+        );
         Self {
-            spectrum: real_spectrum(extended, len),
-            inverse: RealFftPlanner::new().plan_fft_inverse(len),
+            spectrum,
+            inverse,
             samples: grid.len(),
             samples_per_rev: grid.samples_per_rev,
         }
@@ -373,6 +383,7 @@ fn validate(l: &SplitLimits) -> Result<(), FieldError> {
 }
 
 /// The slide's and the servo's extremes along the path, and the servo's peak-to-valley, mm.
+#[derive(Debug, PartialEq)]
 struct Motion {
     z: AngleExtremes,
     w: AngleExtremes,
@@ -423,7 +434,6 @@ impl Context<'_> {
     /// The automatic split (module docs).
     fn auto(&self, limits: &SplitLimits) -> Split {
         let z = &self.signal.z_mm;
-        let zero = vec![0.0; z.len()];
         // The slide's bandwidth figure (known, or a transform on the grid) beside its pass over
         // the points.
         let (bandwidths, motion) = both(
@@ -431,13 +441,13 @@ impl Context<'_> {
                 Some(k) => (hz(k, self.rpm), 0.0),
                 None => self.bandwidths(&self.grid.z_mm, None, true),
             },
-            || self.motion(z, &zero),
+            || self.motion_alone(z),
         );
         let alone = self.checks_of(motion, bandwidths, limits);
         if alone.iter().all(Check::passes) {
             return Split {
                 z_slide_mm: z.clone(),
-                w_fts_mm: zero,
+                w_fts_mm: vec![0.0; z.len()],
                 cutoff_hz: None,
                 verdict: Verdict::Feasible {
                     slide_alone: true,
@@ -445,7 +455,6 @@ impl Context<'_> {
                 },
             };
         }
-        drop(zero);
         // The filter's spectrum is let go before the checks' own transforms.
         let (k, z_grid) = self.lowest_cutoff(&LowPass::new(self.grid), limits.fts_stroke_mm);
         let alone_rpm = feasible_rpm(&alone, self.rpm);
@@ -494,16 +503,20 @@ impl Context<'_> {
     /// frequency; the servo's is that of W taken on the grid as `z − Z`, 0 when W is 0 at
     /// every point (`w_is_zero`).
     fn bandwidths(&self, z_grid: &[f64], cutoff_cpr: Option<f64>, w_is_zero: bool) -> (f64, f64) {
-        let band = |v: Vec<f64>| hz(highest_significant_cycles_per_rev(self.grid, v), self.rpm);
-        let slide = cutoff_cpr.map_or_else(|| band(z_grid.to_vec()), |k| hz(k, self.rpm));
+        // Each channel made on the grid while its transform is made on a second core.
+        let band = |make: &dyn Fn() -> Vec<f64>| {
+            let cpr = highest_significant_cycles_per_rev_beside(self.grid, self.grid.len(), make);
+            hz(cpr, self.rpm)
+        };
+        let slide = cutoff_cpr.map_or_else(|| band(&|| z_grid.to_vec()), |k| hz(k, self.rpm));
         let fts = if w_is_zero {
             0.0
         } else {
-            band(
+            band(&|| {
                 (self.grid.z_mm.iter().zip(z_grid))
                     .map(|(a, b)| a - b)
-                    .collect(),
-            )
+                    .collect()
+            })
         };
         (slide, fts)
     }
@@ -522,6 +535,17 @@ impl Context<'_> {
             z: s.angle_extremes(z),
             w: s.angle_extremes(w),
             w_pv_mm: peak_to_valley(w.iter().copied()),
+        }
+    }
+
+    /// [`Self::motion`] of the slide cutting `z` alone, without a servo channel of zeros: W's
+    /// slopes, curvatures and peak-to-valley are 0, found at the first point, as
+    /// [`PathSignal::angle_extremes`] and [`peak_to_valley`] find them for zeros.
+    fn motion_alone(&self, z: &[f64]) -> Motion {
+        Motion {
+            z: self.signal.angle_extremes(z),
+            w: AngleExtremes::default(),
+            w_pv_mm: 0.0,
         }
     }
 
@@ -650,6 +674,24 @@ mod tests {
         for (i, z) in s.z_mm.iter().enumerate() {
             let sum = out.z_slide_mm[i] + out.w_fts_mm[i];
             assert!((sum - z).abs() <= 1e-9, "point {i}: {sum} vs {z}");
+        }
+    }
+
+    #[test]
+    fn the_slide_alone_moves_as_with_a_servo_of_zeros() {
+        // Against `motion` with W held as zeros, on a path whose Z has slopes and curvatures,
+        // and on a flat one (every figure 0, at the first point).
+        for z in [two_tones as fn(f64, f64) -> f64, |_, _| 0.25] {
+            let s = spiral(4.0, 64, 4.0, 0.05, z);
+            let grid = s.uniform().unwrap();
+            let ctx = Context {
+                signal: &s,
+                grid: &grid,
+                z_band_cpr: None,
+                rpm: 60.0,
+            };
+            let zeros = vec![0.0; s.len()];
+            assert_eq!(ctx.motion_alone(&s.z_mm), ctx.motion(&s.z_mm, &zeros));
         }
     }
 

@@ -79,13 +79,16 @@ pub const MAX_POINTS: u64 = 30_000_000;
 /// (100–102 MB) of peak resident set for 1 000 001 points of the sine grid
 /// (`sinusoid-grid-fts.json` at 1 000 points a revolution) with each kind of split or with
 /// machine limits alone (`python3 tests/bench/peak_memory.py`), 341 MB for 4 000 001 points and
-/// 1.19 GB for 13 990 001 (automatic split: 85 bytes a point). The path's columns (32 bytes a
-/// point) and its uniform grid's heights (8) are held throughout, the grid's radii (8) until
-/// X's bandwidth figure takes them; beside them the largest are the transforms (a real-input
-/// transform at most 1/8 longer than the path, about 16 bytes a sample with its output, and its
-/// plan): the Hilbert transform's with the record it turns, the low-pass's with its spectrum
-/// and the slide's channel, a channel's bandwidth figure with the channel. The channels at the
-/// points (16 bytes) are made after their spectra.
+/// 1.19 GB for 13 990 001 (automatic split: 85 bytes a point), 2.40 GB for 28 400 001 (84).
+/// The path's columns (32 bytes a point) are held throughout, its uniform grid's heights (8)
+/// until Z's bandwidth figure of a split path (which reads the slide's share instead), the
+/// grid's radii (8) until X's bandwidth figure takes them; beside them the largest are the
+/// transforms (a real-input transform at most 1/8 longer than the path, about 16 bytes a
+/// sample with its output, and its plan, 12): the Hilbert transform's with the record it
+/// turns, the spectrum's and X's figure's (one plan, two records), the low-pass's with its
+/// spectrum and the slide's channel, a channel's bandwidth figure with the channel. A plan is
+/// made on the second core beside its record only where that does not raise this peak. The
+/// channels at the points (16 bytes) are made after their spectra.
 pub const BYTES_PER_POINT: u64 = 112;
 
 /// Points of the synthetic path the dynamics' time is measured on ([`seconds_per_sample`]).

@@ -378,24 +378,30 @@ impl UniformSignal {
             return least_squares_line(values);
         }
         let base = values[0];
-        // One-revolution moving sums (window ending at j), then their moving sums (window
-        // starting at j): the triangle of half-width M around j, by running sums (rounding grows
-        // like √n·ε, not n²·ε as with prefix sums of prefix sums).
-        let mut boxcar = Vec::with_capacity(n + 1 - m);
+        // One-revolution moving sums B_i (of samples i … i + M − 1), then their moving sums
+        // (B_k … B_{k+M−1}): the triangle of half-width M around sample k + M − 1, by running
+        // sums (rounding grows like √n·ε, not n²·ε as with prefix sums of prefix sums). Each
+        // B_i leaves the second sum M after it entered, so one revolution of them is kept, in
+        // a ring (slot i mod M), not the whole record.
+        let mut ring = Vec::with_capacity(m);
         let mut sum: f64 = values[..m].iter().map(|v| v - base).sum();
-        boxcar.push(sum);
-        for j in m..n {
+        ring.push(sum);
+        for j in m..2 * m - 1 {
             sum += values[j] - values[j - m];
-            boxcar.push(sum);
+            ring.push(sum);
         }
         let mut out = vec![0.0; n];
-        let mut sum2: f64 = boxcar[..m].iter().sum();
+        let mut sum2: f64 = ring.iter().sum();
         let norm = (m * m) as f64;
-        for (k, j) in (m - 1..=n - m).enumerate() {
-            if k > 0 {
-                sum2 += boxcar[k + m - 1] - boxcar[k - 1];
-            }
-            out[j] = base + sum2 / norm;
+        out[m - 1] = base + sum2 / norm;
+        for k in 1..=n + 1 - 2 * m {
+            // B_{k+M−1} in, B_{k−1} out.
+            let j = k + 2 * m - 2;
+            sum += values[j] - values[j - m];
+            let slot = (k - 1) % m;
+            sum2 += sum - ring[slot];
+            ring[slot] = sum;
+            out[k + m - 1] = base + sum2 / norm;
         }
         // The ends: the polynomial through the means at up to three centres one revolution
         // apart, nearest first.
@@ -565,6 +571,53 @@ pub(crate) mod tests {
             one.uniform(),
             Err(SignalError::TooShort { points: 1, .. })
         ));
+    }
+
+    #[test]
+    fn symmetric_part_keeps_one_revolution_of_sums_to_the_bit() {
+        // Against the same running sums with every one-revolution sum kept (as this module
+        // once did), bit for bit, at lengths from the shortest it takes (2M − 1) up, on values
+        // whose sums round differently in another order.
+        let whole_record = |values: &[f64], m: usize| -> Vec<f64> {
+            let (n, base) = (values.len(), values[0]);
+            let mut boxcar = Vec::new();
+            let mut sum: f64 = values[..m].iter().map(|v| v - base).sum();
+            boxcar.push(sum);
+            for j in m..n {
+                sum += values[j] - values[j - m];
+                boxcar.push(sum);
+            }
+            let mut out = vec![f64::NAN; n];
+            let mut sum2: f64 = boxcar[..m].iter().sum();
+            for (k, j) in (m - 1..=n - m).enumerate() {
+                if k > 0 {
+                    sum2 += boxcar[k + m - 1] - boxcar[k - 1];
+                }
+                out[j] = base + sum2 / (m * m) as f64;
+            }
+            out
+        };
+        for m in [1, 2, 3, 8, 13] {
+            let grid = UniformSignal {
+                samples_per_rev: m,
+                z_mm: Vec::new(),
+                rho_mm: Vec::new(),
+            };
+            for n in [2 * m - 1, 2 * m, 5 * m + 3, 40 * m + 1] {
+                let values: Vec<f64> = (0..n)
+                    .map(|j| 1e3 * ((j * j) as f64 * 0.37).sin() + 0.1 * j as f64)
+                    .collect();
+                let ours = grid.symmetric_part(&values);
+                let theirs = whole_record(&values, m);
+                for j in m - 1..=n - m {
+                    assert_eq!(
+                        ours[j].to_bits(),
+                        theirs[j].to_bits(),
+                        "M {m}, n {n}, sample {j}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]

@@ -57,7 +57,11 @@
 //! over `rustfft`: a record of even length L goes through a complex transform of L/2 and one
 //! pass of twiddles), which keeps bins 0 … L/2 only, the others being their conjugates: half the
 //! work of a complex transform, and 16 bytes a sample of the record with its output against 48
-//! for a complex transform in place with its scratch (the dynamics' peak memory).
+//! for a complex transform in place with its scratch (the dynamics' peak memory). Making a
+//! transform's plan (its twiddle factors, 12 bytes a sample) costs about as much as running it,
+//! so records of one length share a plan ([`amplitude_spectrum_and_bands_on`]) and a plan is
+//! made on a second core while its record is prepared; the plans are deterministic, so the
+//! results are the same to the bit.
 
 use crate::dynamics::path_signal::{PathSignal, UniformSignal, hz, residual_gain};
 use crate::parallel::{both, fill_each};

@@ -357,7 +357,7 @@ fn the_dynamics_estimate_counts_the_samples_of_their_grid() {
     let signal = |angles: Vec<f64>| PathSignal {
         rho_mm: vec![1.0; angles.len()],
         z_mm: vec![0.0; angles.len()],
-        angle_rad: angles,
+        theta_rad: angles,
     };
     let steady = signal((0..=50_000).map(|i| TAU * i as f64 / 500.0).collect());
     let grid = steady.uniform().unwrap().z_mm.len() as f64;

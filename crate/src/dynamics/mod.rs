@@ -80,7 +80,8 @@ pub const MAX_POINTS: u64 = 30_000_000;
 /// (`sinusoid-grid-fts.json` at 1 000 points a revolution) with each kind of split or with
 /// machine limits alone (`python3 tests/bench/peak_memory.py`), 341 MB for 4 000 001 points and
 /// 1.19 GB for 13 990 001 (automatic split: 85 bytes a point), 2.40 GB for 28 400 001 (84).
-/// The path's columns (32 bytes a point) are held throughout, its uniform grid's heights (8)
+/// The path's columns (24 bytes a point: θ, ρ, z; the angle turned is read off θ) are held
+/// throughout, its uniform grid's heights (8)
 /// until Z's bandwidth figure of a split path (which reads the slide's share instead), the
 /// grid's radii (8) until X's bandwidth figure takes them; beside them the largest are the
 /// transforms (a real-input transform at most 1/8 longer than the path, about 16 bytes a
@@ -290,36 +291,6 @@ pub struct Dynamics {
     pub fts_grid: Option<FtsGrid>,
 }
 
-/// The path as the dynamics keep it: its signal and the cumulative angle of every point
-/// (32 bytes a point rather than a whole [`PathPoint`]).
-struct Columns {
-    signal: PathSignal,
-    theta: Vec<f64>,
-}
-
-impl Columns {
-    fn with_capacity(n: usize) -> Self {
-        Self {
-            signal: PathSignal {
-                angle_rad: Vec::with_capacity(n),
-                rho_mm: Vec::with_capacity(n),
-                z_mm: Vec::with_capacity(n),
-            },
-            theta: Vec::with_capacity(n),
-        }
-    }
-
-    /// Appends a point; the signal's angle is measured from the first point's, as
-    /// [`PathSignal::from_points`] does.
-    fn push(&mut self, p: &PathPoint) {
-        let t0 = self.theta.first().copied().unwrap_or(p.theta);
-        self.signal.angle_rad.push((p.theta - t0).abs());
-        self.signal.rho_mm.push(p.rho);
-        self.signal.z_mm.push(p.z);
-        self.theta.push(p.theta);
-    }
-}
-
 /// Whether `job` asks for the dynamics: a split, or a limit of the machine to check.
 pub fn wanted(job: &Job) -> bool {
     let m = &job.machine;
@@ -461,17 +432,19 @@ impl Dynamics {
             )
             .into());
         }
-        let mut columns = Columns::with_capacity(usize::try_from(total).unwrap_or(0));
+        // The path as the dynamics keep it: three columns, 24 bytes a point rather than a
+        // whole [`PathPoint`].
+        let mut signal = PathSignal::with_capacity(usize::try_from(total).unwrap_or(0));
         path.for_each_point(Stage::Dynamics, progress, &mut |p, _| {
-            columns.push(p);
+            signal.push(p);
             Ok::<(), DynamicsError>(())
         })?;
-        let mut dynamics = Self::of_columns(path.job(), &columns)?;
+        let mut dynamics = Self::of_signal(path.job(), &signal)?;
         if let (true, Some(w)) = (grid, &dynamics.w_fts_mm) {
             let job = path.job();
             let servo = ServoPath {
-                theta: &columns.theta,
-                rho: &columns.signal.rho_mm,
+                theta: &signal.theta_rad,
+                rho: &signal.rho_mm,
                 w,
             };
             let spec = job.output.fts_grid.clone().unwrap_or_default();
@@ -486,17 +459,16 @@ impl Dynamics {
 
     /// The dynamics of the planned `points` of `job`.
     pub fn of_points(job: &Job, points: &[PathPoint]) -> Result<Self, SplitError> {
-        let mut path = Columns::with_capacity(points.len());
+        let mut signal = PathSignal::with_capacity(points.len());
         for p in points {
-            path.push(p);
+            signal.push(p);
         }
-        Self::of_columns(job, &path)
+        Self::of_signal(job, &signal)
     }
 
-    fn of_columns(job: &Job, path: &Columns) -> Result<Self, SplitError> {
+    fn of_signal(job: &Job, signal: &PathSignal) -> Result<Self, SplitError> {
         let machine = &job.machine;
         let rpm = machine.spindle_rpm;
-        let signal = &path.signal;
         // The path on its uniform grid, resampled once for every analysis below.
         let mut uniform = signal.uniform();
         let instantaneous_frequency = uniform.as_ref().map_or_else(
@@ -542,9 +514,9 @@ impl Dynamics {
             g.z_mm = Vec::new();
         }
         let grid = uniform.as_ref().ok();
-        let samples = (0..path.theta.len()).map(|i| {
+        let samples = (0..signal.len()).map(|i| {
             let slide = z_slide.as_ref().and_then(|z| z.get(i)).copied();
-            AxisSample::new(path.theta[i], signal.rho_mm[i], signal.z_mm[i], slide)
+            AxisSample::new(signal.theta_rad[i], signal.rho_mm[i], signal.z_mm[i], slide)
         });
         // The axis checks (a pass over the points) beside Z's bandwidth figure (a transform of
         // the slide's Z on the grid: the path's, or its share of a split path resampled alike).

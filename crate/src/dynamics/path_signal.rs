@@ -53,8 +53,10 @@ pub const MAX_GRID_PER_POINT: usize = 4;
 /// The compensated path as three columns, one row per path point.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct PathSignal {
-    /// Spindle angle turned since the first point, `|θ_i − θ_0|`, radians, non-decreasing.
-    pub angle_rad: Vec<f64>,
+    /// Spindle angle θ of each point as the path gives it (turned cumulatively), radians. The
+    /// analysis reads the angle turned since the first point, `|θ_i − θ_0|` ([`Self::angle`]),
+    /// which must not decrease; it is not held beside θ (8 bytes a point).
+    pub theta_rad: Vec<f64>,
     /// Radius (X), mm.
     pub rho_mm: Vec<f64>,
     /// Commanded Z (the tool tip), mm.
@@ -83,14 +85,14 @@ pub enum SignalError {
     /// The columns have different lengths.
     ///
     /// ```
-    /// let s = spiralcam::dynamics::path_signal::PathSignal { angle_rad: vec![0.0, 1.0, 2.0], rho_mm: vec![1.0; 3], z_mm: vec![0.0; 2] };
+    /// let s = spiralcam::dynamics::path_signal::PathSignal { theta_rad: vec![0.0, 1.0, 2.0], rho_mm: vec![1.0; 3], z_mm: vec![0.0; 2] };
     /// assert!(s.check().unwrap_err().to_string().starts_with("the path's columns differ"));
     /// ```
     #[error(
         "the path's columns differ in length: {angles} angles, {radii} radii, {heights} heights"
     )]
     Ragged {
-        /// Length of `angle_rad`.
+        /// Length of `theta_rad`.
         angles: usize,
         /// Length of `rho_mm`.
         radii: usize,
@@ -100,7 +102,7 @@ pub enum SignalError {
     /// A value is NaN or infinite.
     ///
     /// ```
-    /// let s = spiralcam::dynamics::path_signal::PathSignal { angle_rad: vec![0.0, 1.0, 2.0], rho_mm: vec![1.0; 3], z_mm: vec![0.0, f64::NAN, 0.0] };
+    /// let s = spiralcam::dynamics::path_signal::PathSignal { theta_rad: vec![0.0, 1.0, 2.0], rho_mm: vec![1.0; 3], z_mm: vec![0.0, f64::NAN, 0.0] };
     /// assert_eq!(s.check().unwrap_err().to_string(), "the path has a value that is not finite at point 1");
     /// ```
     #[error("the path has a value that is not finite at point {index}")]
@@ -112,7 +114,7 @@ pub enum SignalError {
     /// the spindle): time would run backwards.
     ///
     /// ```
-    /// let s = spiralcam::dynamics::path_signal::PathSignal { angle_rad: vec![0.0, 1.0, 0.5], rho_mm: vec![1.0; 3], z_mm: vec![0.0; 3] };
+    /// let s = spiralcam::dynamics::path_signal::PathSignal { theta_rad: vec![0.0, 1.0, 0.5], rho_mm: vec![1.0; 3], z_mm: vec![0.0; 3] };
     /// assert!(s.check().unwrap_err().to_string().starts_with("the spindle angle goes back at point 2"));
     /// ```
     #[error(
@@ -138,18 +140,35 @@ pub struct AngleExtremes {
 }
 
 impl PathSignal {
-    /// The signal of a path: `angle_rad` from θ relative to the first point, whatever the
-    /// direction.
+    /// An empty signal with room for `n` points.
+    pub fn with_capacity(n: usize) -> Self {
+        Self {
+            theta_rad: Vec::with_capacity(n),
+            rho_mm: Vec::with_capacity(n),
+            z_mm: Vec::with_capacity(n),
+        }
+    }
+
+    /// The signal of a path's points.
     pub fn from_points(points: impl IntoIterator<Item = PathPoint>) -> Self {
         let mut s = Self::default();
-        let mut theta0 = None;
         for p in points {
-            let t0 = *theta0.get_or_insert(p.theta);
-            s.angle_rad.push((p.theta - t0).abs());
-            s.rho_mm.push(p.rho);
-            s.z_mm.push(p.z);
+            s.push(&p);
         }
         s
+    }
+
+    /// Appends a point.
+    pub fn push(&mut self, p: &PathPoint) {
+        self.theta_rad.push(p.theta);
+        self.rho_mm.push(p.rho);
+        self.z_mm.push(p.z);
+    }
+
+    /// The angle turned from the first point to point `i`, `|θ_i − θ_0|`, radians, whatever
+    /// the direction.
+    pub fn angle(&self, i: usize) -> f64 {
+        (self.theta_rad[i] - self.theta_rad[0]).abs()
     }
 
     /// Number of points.
@@ -164,7 +183,11 @@ impl PathSignal {
 
     /// Angle turned from the first point to the last, radians.
     pub fn span_rad(&self) -> f64 {
-        self.angle_rad.last().copied().unwrap_or(0.0)
+        if self.theta_rad.is_empty() {
+            0.0
+        } else {
+            self.angle(self.theta_rad.len() - 1)
+        }
     }
 
     /// Revolutions of the path.
@@ -180,7 +203,7 @@ impl PathSignal {
     /// Checks that the columns agree, every value is finite, the angle never goes back and the
     /// path has at least 3 points over a positive angle.
     pub fn check(&self) -> Result<(), SignalError> {
-        let (a, r, z) = (self.angle_rad.len(), self.rho_mm.len(), self.z_mm.len());
+        let (a, r, z) = (self.theta_rad.len(), self.rho_mm.len(), self.z_mm.len());
         if a != r || a != z {
             return Err(SignalError::Ragged {
                 angles: a,
@@ -188,16 +211,16 @@ impl PathSignal {
                 heights: z,
             });
         }
-        let mut columns = self.angle_rad.iter().zip(&self.rho_mm).zip(&self.z_mm);
+        let mut columns = self.theta_rad.iter().zip(&self.rho_mm).zip(&self.z_mm);
         if let Some(index) =
             columns.position(|((a, r), z)| !(a.is_finite() && r.is_finite() && z.is_finite()))
         {
             return Err(SignalError::NotFinite { index });
         }
-        if let Some(i) = self.angle_rad.windows(2).position(|w| w[1] < w[0]) {
+        if let Some(i) = (1..a).position(|i| self.angle(i) < self.angle(i - 1)) {
             return Err(SignalError::NotAdvancing { index: i + 1 });
         }
-        let span_rad = self.span_rad() - self.angle_rad.first().copied().unwrap_or(0.0);
+        let span_rad = self.span_rad();
         if self.len() < 3 || span_rad <= 0.0 {
             return Err(SignalError::TooShort {
                 points: self.len(),
@@ -214,10 +237,13 @@ impl PathSignal {
         let mut densest = MIN_SAMPLES_PER_REV as f64;
         let mut first = 0;
         while first < self.len() {
-            let rev = (self.angle_rad[first] / TAU).floor();
-            let last =
-                first + self.angle_rad[first..].partition_point(|a| (a / TAU).floor() <= rev) - 1;
-            let span = self.angle_rad[last] - self.angle_rad[first];
+            let rev = (self.angle(first) / TAU).floor();
+            let t0 = self.theta_rad[0];
+            let last = first
+                + self.theta_rad[first..]
+                    .partition_point(|t| ((t - t0).abs() / TAU).floor() <= rev)
+                - 1;
+            let span = self.angle(last) - self.angle(first);
             if last > first && span > 0.0 {
                 densest = densest.max(TAU * (last - first) as f64 / span);
             }
@@ -260,10 +286,10 @@ impl PathSignal {
         let mut k = 0;
         for j in 0..count {
             let phi = j as f64 * step;
-            while k + 2 < self.len() && self.angle_rad[k + 1] < phi {
+            while k + 2 < self.len() && self.angle(k + 1) < phi {
                 k += 1;
             }
-            let (a0, a1) = (self.angle_rad[k], self.angle_rad[k + 1]);
+            let (a0, a1) = (self.angle(k), self.angle(k + 1));
             let t = if a1 > a0 {
                 ((phi - a0) / (a1 - a0)).clamp(0.0, 1.0)
             } else {
@@ -280,11 +306,11 @@ impl PathSignal {
     /// (`2·(s_{i+½} − s_{i−½})/(φ_{i+1} − φ_{i−1})`, exact for a parabola). Segments of zero
     /// angle are skipped.
     pub fn angle_extremes(&self, values: &[f64]) -> AngleExtremes {
-        let n = values.len().min(self.angle_rad.len());
+        let n = values.len().min(self.theta_rad.len());
         let mut e = AngleExtremes::default();
         let mut prev: Option<(f64, f64)> = None; // (slope, angle step) of the segment before
         for i in 0..n.saturating_sub(1) {
-            let da = self.angle_rad[i + 1] - self.angle_rad[i];
+            let da = self.angle(i + 1) - self.angle(i);
             if da <= 0.0 {
                 continue;
             }
@@ -501,7 +527,7 @@ pub(crate) mod tests {
         for k in 0..count {
             let phi = k as f64 * TAU / per_rev as f64;
             let rho = r0 - feed * phi / TAU;
-            s.angle_rad.push(phi);
+            s.theta_rad.push(phi);
             s.rho_mm.push(rho);
             s.z_mm.push(z(rho, phi));
         }
@@ -525,7 +551,7 @@ pub(crate) mod tests {
         let mut s = PathSignal::default();
         let mut phi = 0.0;
         while phi < 3.0 * TAU {
-            s.angle_rad.push(phi);
+            s.theta_rad.push(phi);
             s.rho_mm.push(1.0);
             s.z_mm.push(2.0 * phi + 1.0);
             phi += if phi < TAU { 0.01 } else { 0.05 };
@@ -536,22 +562,23 @@ pub(crate) mod tests {
         for (j, z) in u.z_mm.iter().enumerate() {
             assert!((z - (2.0 * j as f64 * u.step_rad() + 1.0)).abs() < 1e-12);
         }
-        let back = u.at_path(&u.z_mm, &s.angle_rad);
+        // θ starts at 0 here: it is the angle turned.
+        let back = u.at_path(&u.z_mm, &s.theta_rad);
         for (a, b) in back.iter().zip(&s.z_mm) {
             assert!((a - b).abs() < 1e-12);
         }
         // Any other column lands on the same grid: a quadratic in angle is interpolated
         // linearly between the two points around each sample.
-        let q: Vec<f64> = s.angle_rad.iter().map(|a| a * a).collect();
+        let q: Vec<f64> = s.theta_rad.iter().map(|a| a * a).collect();
         let on_grid = s.uniform_values(&q);
         assert_eq!(on_grid.len(), u.len());
         for (j, v) in on_grid.iter().enumerate() {
             let phi = j as f64 * u.step_rad();
             let k = s
-                .angle_rad
+                .theta_rad
                 .partition_point(|a| *a < phi)
                 .clamp(1, s.len() - 1);
-            let (a0, a1) = (s.angle_rad[k - 1], s.angle_rad[k]);
+            let (a0, a1) = (s.theta_rad[k - 1], s.theta_rad[k]);
             let linear = a0 * a0 + (phi - a0) / (a1 - a0) * (a1 * a1 - a0 * a0);
             assert!(
                 (v - linear).abs() < 1e-12,

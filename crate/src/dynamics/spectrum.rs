@@ -798,7 +798,7 @@ mod tests {
         ] {
             let (a, rpm) = (0.003, 60.0);
             let s = spiral(revs, 64, 5.0, 0.01, |_, t| a * (k * t).sin());
-            let n = s.angle_rad.len();
+            let n = s.len();
             assert!(fast_length(n, false) > n, "{n} is not padded");
             let p = amplitude_spectrum(&s, rpm, 1000).peaks[0];
             assert!((p.cycles_per_rev - k).abs() < 1e-8 * k, "k {k}: {p:?}");

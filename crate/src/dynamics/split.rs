@@ -201,7 +201,7 @@ pub enum SplitError {
     /// ```
     /// use spiralcam::dynamics::split::split;
     /// use spiralcam::job::SplitSpec;
-    /// let s = spiralcam::dynamics::path_signal::PathSignal { angle_rad: vec![0.0, 1.0, 2.0], rho_mm: vec![1.0; 3], z_mm: vec![0.0; 3] };
+    /// let s = spiralcam::dynamics::path_signal::PathSignal { theta_rad: vec![0.0, 1.0, 2.0], rho_mm: vec![1.0; 3], z_mm: vec![0.0; 3] };
     /// let e = split(&s, &SplitSpec::LowPass { cutoff_hz: -1.0 }, 60.0, None).unwrap_err();
     /// assert!(e.to_string().starts_with("strategy.split.cutoff_hz = -1: must be"));
     /// ```
@@ -412,7 +412,7 @@ impl Context<'_> {
         other_rpm: Option<f64>,
     ) -> Split {
         let s = self.signal;
-        let slide_at = |i: usize| self.grid.interpolate(z_grid, s.angle_rad[i]);
+        let slide_at = |i: usize| self.grid.interpolate(z_grid, s.angle(i));
         let bandwidths = limits.map(|_| {
             let w_is_zero = (0..s.len()).all(|i| s.z_mm[i] - slide_at(i) == 0.0);
             self.bandwidths(z_grid, cutoff_cpr, w_is_zero)
@@ -469,8 +469,8 @@ impl Context<'_> {
         let pv_w = |k: f64| {
             let z_grid = filter.apply(k);
             let s = self.signal;
-            let w = (s.z_mm.iter().zip(&s.angle_rad))
-                .map(|(z, &a)| z - self.grid.interpolate(&z_grid, a));
+            let w = (s.z_mm.iter().enumerate())
+                .map(|(i, z)| z - self.grid.interpolate(&z_grid, s.angle(i)));
             (peak_to_valley(w), z_grid)
         };
         let (mut lo, mut hi) = (
@@ -647,7 +647,7 @@ mod tests {
     fn tone(s: &PathSignal, v: &[f64], k: f64, skip: f64) -> f64 {
         let inside = |a: f64| a >= skip * TAU - 1e-9 && a < s.span_rad() - skip * TAU - 1e-9;
         let (mut c, mut d, mut n) = (0.0, 0.0, 0.0);
-        for (a, x) in s.angle_rad.iter().zip(v).filter(|(a, _)| inside(**a)) {
+        for (a, x) in s.theta_rad.iter().zip(v).filter(|(a, _)| inside(**a)) {
             c += x * (k * a).cos();
             d += x * (k * a).sin();
             n += 1.0;
@@ -741,7 +741,7 @@ mod tests {
         });
         let out = split(&s, &SplitSpec::LowPass { cutoff_hz: 1.0 }, 60.0, None).unwrap();
         let mid = 2000; // point at the centre: 10 revolutions × 200
-        assert!((s.angle_rad[mid] - centre).abs() < 1e-9);
+        assert!((s.angle(mid) - centre).abs() < 1e-9);
         for d in 1..600 {
             let (a, b) = (out.z_slide_mm[mid + d], out.z_slide_mm[mid - d]);
             assert!((a - b).abs() < 1e-15, "±{d}: {a} {b}");
@@ -761,7 +761,7 @@ mod tests {
         assert_adds_up(&s, &out);
         let bias = 0.02 * 0.05f64.powi(2) * (1.0 - 1.0 / 128f64.powi(2)) / 12.0;
         for i in 0..s.len() {
-            let (r, t) = (s.rho_mm[i], s.angle_rad[i]);
+            let (r, t) = (s.rho_mm[i], s.angle(i));
             let want = 0.003 * r * (2.0 * t).cos() - bias;
             assert!(
                 (out.w_fts_mm[i] - want).abs() < 1e-12,

@@ -588,14 +588,15 @@ pub fn instantaneous_frequency_on(
         *s = (s.0.min(j), j);
     }
     let m = grid.samples_per_rev as f64;
-    // (frequency Hz, envelope) of pair j.
-    let frequency = |j: usize| {
+    // (frequency Hz, envelope) of pair j, the envelope from the two samples' moduli `near`
+    // and that of sample j + 1.
+    let frequency = |j: usize, near: f64| {
         let (a, b) = (
             Complex::new(re[j], im[j]),
             Complex::new(re[j + 1], im[j + 1]),
         );
-        let turn = (b * a.conj()).arg() / TAU;
-        (hz(turn * m, spindle_rpm), 0.5 * (a.norm() + b.norm()))
+        let (turn, far) = ((b * a.conj()).arg() / TAU, b.norm());
+        ((hz(turn * m, spindle_rpm), 0.5 * (near + far)), far)
     };
     let met: Vec<(usize, (usize, usize))> = (stretch.into_iter().enumerate())
         .filter(|(_, (first, _))| *first != usize::MAX)
@@ -603,10 +604,18 @@ pub fn instantaneous_frequency_on(
     // The bands' figures, each band on the next free core (each holds its own pairs only).
     let figures = |k: usize| {
         let (b, (first, last)) = met[k];
-        let mut v: Vec<(f64, f64)> = (first..=last)
-            .filter(|&j| band_of(j) == b)
-            .map(frequency)
-            .collect();
+        // Consecutive pairs share a sample: its modulus is taken once.
+        let mut v: Vec<(f64, f64)> = Vec::new();
+        let mut shared: Option<(usize, f64)> = None;
+        for j in (first..=last).filter(|&j| band_of(j) == b) {
+            let near = match shared {
+                Some((k, modulus)) if k == j => modulus,
+                _ => Complex::new(re[j], im[j]).norm(),
+            };
+            let (pair, far) = frequency(j, near);
+            v.push(pair);
+            shared = Some((j + 1, far));
+        }
         let mut env: Vec<f64> = v.iter().map(|e| e.1).collect();
         let middle = env.len() / 2;
         let (_, median_envelope, _) = env.select_nth_unstable_by(middle, f64::total_cmp);

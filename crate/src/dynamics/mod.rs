@@ -70,26 +70,28 @@ impl From<crate::field::FieldError> for DynamicsError {
 pub const SPECTRUM_BINS: usize = 2048;
 
 /// The most points the dynamics analyse: 3·10⁷, above a 28.4 M-point finishing path (measured
-/// 2.34 GB at 28 400 001 points of the sine grid, 82 bytes a point; [`BYTES_PER_POINT`] reckons
-/// 3.4 GB at this limit). The page admits fewer
+/// 2.23 GB of peak resident set at 28 400 001 points of the sine grid, 78 bytes a point;
+/// [`BYTES_PER_POINT`] reckons 3.4 GB at this limit). The page admits fewer
 /// ([`crate::plan::admission::Limits::max_dynamics_points`]): a tab's memory is smaller.
 pub const MAX_POINTS: u64 = 30_000_000;
 
-/// The peak memory of the dynamics per path point, bytes, with some room: 95–97 MiB
-/// (100–102 MB) of peak resident set for 1 000 001 points of the sine grid
-/// (`sinusoid-grid-fts.json` at 1 000 points a revolution) with each kind of split or with
-/// machine limits alone (`python3 tests/bench/peak_memory.py`), 341 MB for 4 000 001 points and
-/// 1.19 GB for 13 990 001 (automatic split: 85 bytes a point), 2.40 GB for 28 400 001 (84).
-/// The path's columns (24 bytes a point: θ, ρ, z; the angle turned is read off θ) are held
-/// throughout, its uniform grid's heights (8)
-/// until Z's bandwidth figure of a split path (which reads the slide's share instead), the
-/// grid's radii (8) until X's bandwidth figure takes them; beside them the largest are the
-/// transforms (a real-input transform at most 1/8 longer than the path, about 16 bytes a
-/// sample with its output, and its plan, 12): the Hilbert transform's with the record it
-/// turns, the spectrum's and X's figure's (one plan, two records), the low-pass's with its
-/// spectrum and the slide's channel, a channel's bandwidth figure with the channel. A plan is
-/// made on the second core beside its record only where that does not raise this peak. The
-/// channels at the points (16 bytes) are made after their spectra.
+/// The peak memory of the dynamics per path point, bytes, with some room: 85–94 MiB (89–99 MB)
+/// of peak resident set for 1 000 001 points of the sine grid (`sinusoid-grid-fts.json` at
+/// 1 000 points a revolution) with each kind of split or with machine limits alone
+/// (`python3 tests/bench/peak_memory.py`); with the automatic split 373 MB for 4 000 001
+/// points, 1.11 GB for 14 000 001 (79 bytes a point) and 2.23 GB for 28 400 001 (78;
+/// `python3 tests/bench/dynamics.py`). At 14 M points the instantaneous frequency, the
+/// spectrum beside X's figure and the low-pass's first transform each come within 3 % of the
+/// peak. The path's columns (24 bytes a point: θ, ρ, z; the angle turned is read off θ) are
+/// held throughout, its uniform grid's heights (8) until Z's bandwidth figure of a split path
+/// (which reads the slide's share instead), the grid's radii (8) until X's bandwidth figure
+/// takes them; beside them the largest are the transforms (a real-input transform at most 1/8
+/// longer than the path, about 16 bytes a sample with its output, and its plan, 12): the
+/// Hilbert transform's with the record it turns, the spectrum's and X's figure's (one plan, two
+/// records), the low-pass's with its spectrum and the slide's channel, a channel's bandwidth
+/// figure with the channel. A plan is made on the second core beside its record only where
+/// that does not raise this peak. The channels at the points (16 bytes) are made after their
+/// spectra.
 pub const BYTES_PER_POINT: u64 = 112;
 
 /// Points of the synthetic path the dynamics' time is measured on ([`seconds_per_sample`]).

@@ -29,7 +29,7 @@ fn two_frequencies() -> PathSignal {
     for k in 0..=1_000_000u32 {
         let phi = f64::from(k) * TAU / 1000.0;
         let rho = 5.0 * (1.0 - phi / (1000.0 * TAU));
-        s.angle_rad.push(phi);
+        s.theta_rad.push(phi);
         s.rho_mm.push(rho);
         s.z_mm
             .push(rho * rho / 80.0 + 0.5 * (6.0 * phi).sin() + 0.02 * (47.0 * phi).cos());

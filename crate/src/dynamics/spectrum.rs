@@ -414,9 +414,9 @@ fn spectrum_of(
 /// largest amplitude (and 1 pm); 0 when there is none. The bandwidth figure of a channel. The
 /// record is padded to a [`fast_length`] (at most 1/8 longer, so the spectrum is sampled a
 /// little more finely than its bins, and the transform is not Bluestein's). `values` are
-/// handed over: the transform takes their memory. Its plan is made after their residual, not
-/// beside it: the channels' figures come where the dynamics hold the most (module docs of
-/// [`crate::dynamics`]).
+/// handed over: the transform takes their memory. Its plan is made after their residual, so
+/// the two are never held together ([`highest_significant_cycles_per_rev_beside`] makes it on
+/// a second core while the values are made, where the dynamics have the memory to spare).
 pub fn highest_significant_cycles_per_rev(grid: &UniformSignal, values: Vec<f64>) -> f64 {
     let len = fast_length(values.len(), false);
     let a = hann_amplitudes(residual_of(grid, values), len);

@@ -489,11 +489,6 @@ impl Dynamics {
             }
             Err(_) => (Spectrum::default(), None, None),
         };
-        // A channel's highest significant frequency on the grid, Hz, its values handed over to
-        // the transform.
-        let needed_hz = |g: &UniformSignal, values: Vec<f64>| {
-            hz(highest_significant_cycles_per_rev(g, values), rpm)
-        };
         let (split_report, z_slide, w_fts) = match &job.strategy.split {
             None => (None, None, None),
             Some(spec) => {
@@ -525,14 +520,18 @@ impl Dynamics {
         let (axes, z_needed_hz) = both(
             || check_axes(samples, machine),
             || {
-                grid.map(|g| match &z_slide {
-                    Some(z) => hz(
-                        highest_significant_cycles_per_rev_beside(g, grid_samples, || {
-                            signal.uniform_values(z)
+                grid.map(|g| {
+                    let cpr = match &z_slide {
+                        Some(z) => {
+                            highest_significant_cycles_per_rev_beside(g, grid_samples, || {
+                                signal.uniform_values(z)
+                            })
+                        }
+                        None => z_band_cpr.unwrap_or_else(|| {
+                            highest_significant_cycles_per_rev(g, g.z_mm.clone())
                         }),
-                        rpm,
-                    ),
-                    None => z_band_cpr.map_or_else(|| needed_hz(g, g.z_mm.clone()), |k| hz(k, rpm)),
+                    };
+                    hz(cpr, rpm)
                 })
             },
         );

@@ -25,16 +25,15 @@ const LIMITS: SplitLimits = SplitLimits {
 
 /// 1000 revolutions of 1000 points from radius 5 mm to the centre.
 fn two_frequencies() -> PathSignal {
-    let mut s = PathSignal::default();
+    let (mut theta, mut radius, mut height) = (Vec::new(), Vec::new(), Vec::new());
     for k in 0..=1_000_000u32 {
         let phi = f64::from(k) * TAU / 1000.0;
         let rho = 5.0 * (1.0 - phi / (1000.0 * TAU));
-        s.theta_rad.push(phi);
-        s.rho_mm.push(rho);
-        s.z_mm
-            .push(rho * rho / 80.0 + 0.5 * (6.0 * phi).sin() + 0.02 * (47.0 * phi).cos());
+        theta.push(phi);
+        radius.push(rho);
+        height.push(rho * rho / 80.0 + 0.5 * (6.0 * phi).sin() + 0.02 * (47.0 * phi).cos());
     }
-    s
+    PathSignal::from_columns(theta, radius, height)
 }
 
 fn report(name: &str, s: &PathSignal, rpm: f64) {

@@ -12,7 +12,7 @@ mod common;
 use common::{coarse_grid_fts, example_job};
 use spiralcam::dynamics::path_signal::PathSignal;
 use spiralcam::dynamics::split::{Limit, Verdict};
-use spiralcam::dynamics::{CALIBRATION_POINTS, grid_samples};
+use spiralcam::dynamics::{CALIBRATION_POINTS, Dynamics, grid_samples};
 use spiralcam::job::Job;
 use spiralcam::job::SplitSpec;
 use spiralcam::job::machine::presets;
@@ -251,7 +251,6 @@ fn a_split_the_machine_cannot_make_is_refused_naming_the_field() {
 /// response (H = 1/(1 + (f/20)⁸): 0.99998 at 6.1 Hz, 0.0024 at 42.7 Hz) and loses the other's.
 #[test]
 fn the_compound_eye_splits_its_two_frequencies_onto_the_right_axes() {
-    use spiralcam::dynamics::Dynamics;
     use spiralcam::dynamics::path_signal::PathSignal;
     use spiralcam::dynamics::spectrum::amplitude_spectrum;
     // The whole spectrum, undecimated, of one channel along the path.
@@ -293,6 +292,25 @@ fn the_compound_eye_splits_its_two_frequencies_onto_the_right_axes() {
     assert!(peak_near(&z, hz(42.0)) < 0.01 * lenslets);
     assert!((peak_near(&w, hz(42.0)) - lenslets).abs() < 0.01 * lenslets);
     assert!(peak_near(&w, hz(6.0)) < 0.01 * ring);
+}
+
+/// The dynamics of a constant-angle path with one-way compensation hold its heights alone,
+/// the angles and radii computed from the index being the planned ones to the bit
+/// (`PathSignal::for_spiral`), and find the same as with every column held.
+#[test]
+fn the_dynamics_of_a_constant_angle_path_hold_its_heights_alone_and_find_the_same() {
+    let job = coarse_grid_fts();
+    let planner = Planner::new(&job).unwrap();
+    let points: Vec<_> = planner.points().map(|p| p.unwrap()).collect();
+    let mut indexed = PathSignal::for_spiral(planner.path().spiral(), points.len());
+    points.iter().for_each(|p| indexed.push(p));
+    assert!(indexed.is_indexed());
+    for (i, p) in points.iter().enumerate() {
+        let got = [indexed.theta(i), indexed.rho(i)].map(f64::to_bits);
+        assert_eq!(got, [p.theta, p.rho].map(f64::to_bits), "point {i}");
+    }
+    let run = Dynamics::run(planner.path(), &mut |_| ControlFlow::Continue(())).unwrap();
+    assert_eq!(run, Dynamics::of_points(&job, &points).unwrap());
 }
 
 #[test]
@@ -354,10 +372,9 @@ fn a_finishing_path_of_28_4_m_points_is_admitted_with_its_dynamics() {
 /// of the first turn).
 #[test]
 fn the_dynamics_estimate_counts_the_samples_of_their_grid() {
-    let signal = |angles: Vec<f64>| PathSignal {
-        rho_mm: vec![1.0; angles.len()],
-        z_mm: vec![0.0; angles.len()],
-        theta_rad: angles,
+    let signal = |angles: Vec<f64>| {
+        let n = angles.len();
+        PathSignal::from_columns(angles, vec![1.0; n], vec![0.0; n])
     };
     let steady = signal((0..=50_000).map(|i| TAU * i as f64 / 500.0).collect());
     let grid = steady.uniform().unwrap().z_mm.len() as f64;

@@ -66,10 +66,10 @@ fn the_instantaneous_frequency_of_a_sine_grid_rises_with_the_radius() {
     for b in &bands {
         let mut reference: Vec<f64> = (0..s.len())
             .filter(|&i| {
-                let (r, a) = (s.rho_mm[i], s.angle(i));
+                let (r, a) = (s.rho(i), s.angle(i));
                 r <= b.rho_outer_mm && r > b.rho_inner_mm && a >= TAU && a <= s.span_rad() - TAU
             })
-            .map(|i| TAU * s.rho_mm[i] * s.angle(i).sin().abs() * rpm / 60.0)
+            .map(|i| TAU * s.rho(i) * s.angle(i).sin().abs() * rpm / 60.0)
             .collect();
         reference.sort_by(f64::total_cmp);
         let median = reference[reference.len() / 2];

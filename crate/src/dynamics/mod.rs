@@ -70,20 +70,24 @@ impl From<crate::field::FieldError> for DynamicsError {
 pub const SPECTRUM_BINS: usize = 2048;
 
 /// The most points the dynamics analyse: 3·10⁷, above a 28.4 M-point finishing path (measured
-/// 2.23 GB of peak resident set at 28 400 001 points of the sine grid, 78 bytes a point;
-/// [`BYTES_PER_POINT`] reckons 3.4 GB at this limit). The page admits fewer
+/// 1.77 GB of peak resident set at 28 400 001 points of the sine grid, 62 bytes a point, and
+/// 2.23 GB, 78, where the path's angles and radii are held; [`BYTES_PER_POINT`] reckons 3.4 GB
+/// at this limit). The page admits fewer
 /// ([`crate::plan::admission::Limits::max_dynamics_points`]): a tab's memory is smaller.
 pub const MAX_POINTS: u64 = 30_000_000;
 
 /// The peak memory of the dynamics per path point, bytes, with some room: 85–94 MiB (89–99 MB)
 /// of peak resident set for 1 000 001 points of the sine grid (`sinusoid-grid-fts.json` at
 /// 1 000 points a revolution) with each kind of split or with machine limits alone
-/// (`python3 tests/bench/peak_memory.py`); with the automatic split 373 MB for 4 000 001
-/// points, 1.11 GB for 14 000 001 (79 bytes a point) and 2.23 GB for 28 400 001 (78;
-/// `python3 tests/bench/dynamics.py`). At 14 M points the instantaneous frequency, the
-/// spectrum beside X's figure and the low-pass's first transform each come within 3 % of the
-/// peak. The path's columns (24 bytes a point: θ, ρ, z; the angle turned is read off θ) are
-/// held throughout, its uniform grid's heights (8) until Z's bandwidth figure of a split path
+/// (`python3 tests/bench/peak_memory.py`), where the path's angles and radii are held; with
+/// the automatic split 373 MB for 4 000 001 points, 1.11 GB for 14 000 001 (79 bytes a point)
+/// and 2.23 GB for 28 400 001 (78; `python3 tests/bench/dynamics.py`). At 14 M points the
+/// instantaneous frequency, the spectrum beside X's figure and the low-pass's first transform
+/// each come within 3 % of the peak. The path's columns (24 bytes a point: θ, ρ, z; the angle
+/// turned is read off θ) are held throughout, or z alone (8) where the spiral gives θ and ρ by
+/// the index (a constant-angle path with one-way compensation,
+/// [`PathSignal::for_spiral`]: 28 400 001 points of the sine grid 1.77 GB, 62 bytes a point),
+/// its uniform grid's heights (8) until Z's bandwidth figure of a split path
 /// (which reads the slide's share instead), the grid's radii (8) until X's bandwidth figure
 /// takes them; beside them the largest are the transforms (a real-input transform at most 1/8
 /// longer than the path, about 16 bytes a sample with its output, and its plan, 12): the
@@ -246,16 +250,16 @@ pub struct ChannelProfile {
 pub const PROFILE_BUCKETS: usize = 1024;
 
 impl ChannelProfile {
-    /// The profile of the channels `z` and `w` (mm) at the radii `rho` (mm).
-    pub fn of(rho: &[f64], z: &[f64], w: &[f64]) -> Self {
-        let n = rho.len().min(z.len()).min(w.len());
+    /// The profile of the channels `z` and `w` (mm) of the points whose radii are `rho(i)` (mm).
+    pub fn of(rho: impl Fn(usize) -> f64, z: &[f64], w: &[f64]) -> Self {
+        let n = z.len().min(w.len());
         let size = n.div_ceil(PROFILE_BUCKETS).max(1);
         let mut p = Self::default();
         for start in (0..n).step_by(size) {
             let end = (start + size).min(n);
             let (zl, zh) = extremes(z[start..end].iter().copied());
             let (wl, wh) = extremes(w[start..end].iter().copied());
-            p.rho_mm.push(rho[start]);
+            p.rho_mm.push(rho(start));
             p.z_min_mm.push(zl);
             p.z_max_mm.push(zh);
             p.w_min_um.push(wl * 1e3);
@@ -435,8 +439,10 @@ impl Dynamics {
             .into());
         }
         // The path as the dynamics keep it: three columns, 24 bytes a point rather than a
-        // whole [`PathPoint`].
-        let mut signal = PathSignal::with_capacity(usize::try_from(total).unwrap_or(0));
+        // whole [`PathPoint`], or its heights alone (8) where the spiral gives the angles and
+        // radii by the index.
+        let capacity = usize::try_from(total).unwrap_or(0);
+        let mut signal = PathSignal::for_spiral(path.spiral(), capacity);
         path.for_each_point(Stage::Dynamics, progress, &mut |p, _| {
             signal.push(p);
             Ok::<(), DynamicsError>(())
@@ -444,9 +450,10 @@ impl Dynamics {
         let mut dynamics = Self::of_signal(path.job(), &signal)?;
         if let (true, Some(w)) = (grid, &dynamics.w_fts_mm) {
             let job = path.job();
+            let (theta, rho) = signal.angles_and_radii();
             let servo = ServoPath {
-                theta: &signal.theta_rad,
-                rho: &signal.rho_mm,
+                theta: &theta,
+                rho: &rho,
                 w,
             };
             let spec = job.output.fts_grid.clone().unwrap_or_default();
@@ -513,7 +520,7 @@ impl Dynamics {
         let grid = uniform.as_ref().ok();
         let samples = (0..signal.len()).map(|i| {
             let slide = z_slide.as_ref().and_then(|z| z.get(i)).copied();
-            AxisSample::new(signal.theta_rad[i], signal.rho_mm[i], signal.z_mm[i], slide)
+            AxisSample::new(signal.theta(i), signal.rho(i), signal.z_mm[i], slide)
         });
         // The axis checks (a pass over the points) beside Z's bandwidth figure (a transform of
         // the slide's Z on the grid: the path's, or its share of a split path resampled alike).
@@ -540,7 +547,7 @@ impl Dynamics {
             z: BandwidthCheck::of(z_needed_hz, machine.z_slide.map(|s| s.bandwidth_hz)),
         };
         let channels = match (&z_slide, &w_fts) {
-            (Some(z), Some(w)) => Some(ChannelProfile::of(&signal.rho_mm, z, w)),
+            (Some(z), Some(w)) => Some(ChannelProfile::of(|i| signal.rho(i), z, w)),
             _ => None,
         };
         Ok(Self {

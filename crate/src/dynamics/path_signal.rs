@@ -19,6 +19,11 @@
 //! ([`crate::analysis::linearization`]) that the sampling already bounds. With constant-angle
 //! sampling the grid falls on the path points.
 //!
+//! **Memory.** A path is held as its columns θ, ρ and z, 24 bytes a point, except where its
+//! angles and radii are a function of the index (one-way compensation of a constant-angle
+//! spiral, [`PathSignal::for_spiral`]): then they are computed again whenever they are read,
+//! by the planner's own expression, and only z is held (8 bytes a point).
+//!
 //! **Rotationally symmetric part** (paper 002, "surface decomposition": a rotationally
 //! symmetric surface cut by X, C and Z plus a freeform remainder). On a spiral each radius is
 //! visited once per revolution, so the azimuthal mean at the radius of grid sample j is taken as
@@ -40,7 +45,8 @@
 //! `1 − T(ν)`, `T(ν) = (sin πν / (M·sin(πν/M)))²` ([`residual_gain`]): 1 at whole ν, at
 //! least 0.95 from ν = 1 on.
 
-use crate::path::PathPoint;
+use crate::path::{IndexedPoints, PathPoint, Spiral};
+use std::borrow::Cow;
 use std::f64::consts::TAU;
 use thiserror::Error;
 
@@ -50,17 +56,36 @@ pub const MIN_SAMPLES_PER_REV: usize = 8;
 /// The grid has at most this many samples per path point (and at least 4096 in all).
 pub const MAX_GRID_PER_POINT: usize = 4;
 
-/// The compensated path as three columns, one row per path point.
+/// The compensated path as three columns, one row per path point: the spindle angle θ as the
+/// path gives it (turned cumulatively, radians; [`Self::theta`]), the radius ρ (X, mm;
+/// [`Self::rho`]) and the commanded Z. The analysis reads the angle turned since the first
+/// point, `|θ_i − θ_0|` ([`Self::angle`]), which must not decrease.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct PathSignal {
-    /// Spindle angle θ of each point as the path gives it (turned cumulatively), radians. The
-    /// analysis reads the angle turned since the first point, `|θ_i − θ_0|` ([`Self::angle`]),
-    /// which must not decrease; it is not held beside θ (8 bytes a point).
-    pub theta_rad: Vec<f64>,
-    /// Radius (X), mm.
-    pub rho_mm: Vec<f64>,
+    angles_radii: AnglesRadii,
     /// Commanded Z (the tool tip), mm.
     pub z_mm: Vec<f64>,
+}
+
+/// θ and ρ of the points: held (16 bytes a point), or, where every point is its spiral's
+/// point of the same index (one-way compensation of a constant-angle spiral), computed from
+/// the index to the same bits ([`PathSignal::for_spiral`]).
+#[derive(Debug, Clone, PartialEq)]
+enum AnglesRadii {
+    Held {
+        theta_rad: Vec<f64>,
+        rho_mm: Vec<f64>,
+    },
+    Indexed(IndexedPoints),
+}
+
+impl Default for AnglesRadii {
+    fn default() -> Self {
+        AnglesRadii::Held {
+            theta_rad: Vec::new(),
+            rho_mm: Vec::new(),
+        }
+    }
 }
 
 /// A path that cannot be analysed.
@@ -85,16 +110,16 @@ pub enum SignalError {
     /// The columns have different lengths.
     ///
     /// ```
-    /// let s = spiralcam::dynamics::path_signal::PathSignal { theta_rad: vec![0.0, 1.0, 2.0], rho_mm: vec![1.0; 3], z_mm: vec![0.0; 2] };
+    /// let s = spiralcam::dynamics::path_signal::PathSignal::from_columns(vec![0.0, 1.0, 2.0], vec![1.0; 3], vec![0.0; 2]);
     /// assert!(s.check().unwrap_err().to_string().starts_with("the path's columns differ"));
     /// ```
     #[error(
         "the path's columns differ in length: {angles} angles, {radii} radii, {heights} heights"
     )]
     Ragged {
-        /// Length of `theta_rad`.
+        /// Number of angles θ.
         angles: usize,
-        /// Length of `rho_mm`.
+        /// Number of radii ρ.
         radii: usize,
         /// Length of `z_mm`.
         heights: usize,
@@ -102,7 +127,7 @@ pub enum SignalError {
     /// A value is NaN or infinite.
     ///
     /// ```
-    /// let s = spiralcam::dynamics::path_signal::PathSignal { theta_rad: vec![0.0, 1.0, 2.0], rho_mm: vec![1.0; 3], z_mm: vec![0.0, f64::NAN, 0.0] };
+    /// let s = spiralcam::dynamics::path_signal::PathSignal::from_columns(vec![0.0, 1.0, 2.0], vec![1.0; 3], vec![0.0, f64::NAN, 0.0]);
     /// assert_eq!(s.check().unwrap_err().to_string(), "the path has a value that is not finite at point 1");
     /// ```
     #[error("the path has a value that is not finite at point {index}")]
@@ -114,7 +139,7 @@ pub enum SignalError {
     /// the spindle): time would run backwards.
     ///
     /// ```
-    /// let s = spiralcam::dynamics::path_signal::PathSignal { theta_rad: vec![0.0, 1.0, 0.5], rho_mm: vec![1.0; 3], z_mm: vec![0.0; 3] };
+    /// let s = spiralcam::dynamics::path_signal::PathSignal::from_columns(vec![0.0, 1.0, 0.5], vec![1.0; 3], vec![0.0; 3]);
     /// assert!(s.check().unwrap_err().to_string().starts_with("the spindle angle goes back at point 2"));
     /// ```
     #[error(
@@ -143,9 +168,36 @@ impl PathSignal {
     /// An empty signal with room for `n` points.
     pub fn with_capacity(n: usize) -> Self {
         Self {
-            theta_rad: Vec::with_capacity(n),
-            rho_mm: Vec::with_capacity(n),
+            angles_radii: AnglesRadii::Held {
+                theta_rad: Vec::with_capacity(n),
+                rho_mm: Vec::with_capacity(n),
+            },
             z_mm: Vec::with_capacity(n),
+        }
+    }
+
+    /// An empty signal with room for `n` points of a path along `spiral`. Where the spiral's
+    /// points are a function of their index ([`Spiral::indexed_points`]: constant angle), their
+    /// angles and radii are not held while the points pushed are the spiral's own (the path's
+    /// point `i` at the spiral's point `i`, as one-way compensation leaves them): 8 bytes a
+    /// point instead of 24. The first point that is not (two-way compensation moves both) has
+    /// them held from then on, those before it computed again, so the columns are always what
+    /// was pushed.
+    pub fn for_spiral(spiral: &Spiral, n: usize) -> Self {
+        match spiral.indexed_points() {
+            Some(points) => Self {
+                angles_radii: AnglesRadii::Indexed(points),
+                z_mm: Vec::with_capacity(n),
+            },
+            None => Self::with_capacity(n),
+        }
+    }
+
+    /// The signal of the columns θ (radians), ρ and z (mm), one value a point.
+    pub fn from_columns(theta_rad: Vec<f64>, rho_mm: Vec<f64>, z_mm: Vec<f64>) -> Self {
+        Self {
+            angles_radii: AnglesRadii::Held { theta_rad, rho_mm },
+            z_mm,
         }
     }
 
@@ -160,15 +212,73 @@ impl PathSignal {
 
     /// Appends a point.
     pub fn push(&mut self, p: &PathPoint) {
-        self.theta_rad.push(p.theta);
-        self.rho_mm.push(p.rho);
+        let i = self.z_mm.len();
+        if let AnglesRadii::Indexed(points) = self.angles_radii {
+            let own = (i as u64 <= points.last()).then(|| points.at(i as u64));
+            let same = own.is_some_and(|q| {
+                q.theta.to_bits() == p.theta.to_bits() && q.rho.to_bits() == p.rho.to_bits()
+            });
+            if !same {
+                let mut held = Self::with_capacity(self.z_mm.capacity());
+                for k in 0..i {
+                    let q = points.at(k as u64);
+                    held.push_columns(q.theta, q.rho);
+                }
+                self.angles_radii = held.angles_radii;
+            }
+        }
+        self.push_columns(p.theta, p.rho);
         self.z_mm.push(p.z);
+    }
+
+    /// Appends θ and ρ where they are held.
+    fn push_columns(&mut self, theta: f64, rho: f64) {
+        if let AnglesRadii::Held { theta_rad, rho_mm } = &mut self.angles_radii {
+            theta_rad.push(theta);
+            rho_mm.push(rho);
+        }
+    }
+
+    /// Whether the angles and radii are computed from the points' indices, not held
+    /// ([`Self::for_spiral`]).
+    pub fn is_indexed(&self) -> bool {
+        matches!(self.angles_radii, AnglesRadii::Indexed(_))
+    }
+
+    /// The spindle angle θ of point `i`, radians.
+    pub fn theta(&self, i: usize) -> f64 {
+        match &self.angles_radii {
+            AnglesRadii::Held { theta_rad, .. } => theta_rad[i],
+            AnglesRadii::Indexed(points) => points.at(i as u64).theta,
+        }
+    }
+
+    /// The radius ρ of point `i`, mm.
+    pub fn rho(&self, i: usize) -> f64 {
+        match &self.angles_radii {
+            AnglesRadii::Held { rho_mm, .. } => rho_mm[i],
+            AnglesRadii::Indexed(points) => points.at(i as u64).rho,
+        }
+    }
+
+    /// The angles θ and radii ρ of every point as columns: borrowed where they are held,
+    /// computed (16 bytes a point) where they are not.
+    pub fn angles_and_radii(&self) -> (Cow<'_, [f64]>, Cow<'_, [f64]>) {
+        match &self.angles_radii {
+            AnglesRadii::Held { theta_rad, rho_mm } => {
+                (Cow::Borrowed(theta_rad), Cow::Borrowed(rho_mm))
+            }
+            AnglesRadii::Indexed(_) => (
+                (0..self.len()).map(|i| self.theta(i)).collect(),
+                (0..self.len()).map(|i| self.rho(i)).collect(),
+            ),
+        }
     }
 
     /// The angle turned from the first point to point `i`, `|θ_i − θ_0|`, radians, whatever
     /// the direction.
     pub fn angle(&self, i: usize) -> f64 {
-        (self.theta_rad[i] - self.theta_rad[0]).abs()
+        (self.theta(i) - self.theta(0)).abs()
     }
 
     /// Number of points.
@@ -183,10 +293,17 @@ impl PathSignal {
 
     /// Angle turned from the first point to the last, radians.
     pub fn span_rad(&self) -> f64 {
-        if self.theta_rad.is_empty() {
-            0.0
-        } else {
-            self.angle(self.theta_rad.len() - 1)
+        match self.angles() {
+            0 => 0.0,
+            n => self.angle(n - 1),
+        }
+    }
+
+    /// The number of angles: the points', unless the columns are ragged.
+    fn angles(&self) -> usize {
+        match &self.angles_radii {
+            AnglesRadii::Held { theta_rad, .. } => theta_rad.len(),
+            AnglesRadii::Indexed(_) => self.len(),
         }
     }
 
@@ -203,7 +320,11 @@ impl PathSignal {
     /// Checks that the columns agree, every value is finite, the angle never goes back and the
     /// path has at least 3 points over a positive angle.
     pub fn check(&self) -> Result<(), SignalError> {
-        let (a, r, z) = (self.theta_rad.len(), self.rho_mm.len(), self.z_mm.len());
+        let (a, z) = (self.angles(), self.z_mm.len());
+        let r = match &self.angles_radii {
+            AnglesRadii::Held { rho_mm, .. } => rho_mm.len(),
+            AnglesRadii::Indexed(_) => z,
+        };
         if a != r || a != z {
             return Err(SignalError::Ragged {
                 angles: a,
@@ -211,10 +332,10 @@ impl PathSignal {
                 heights: z,
             });
         }
-        let mut columns = self.theta_rad.iter().zip(&self.rho_mm).zip(&self.z_mm);
-        if let Some(index) =
-            columns.position(|((a, r), z)| !(a.is_finite() && r.is_finite() && z.is_finite()))
-        {
+        let finite = |i: usize| {
+            self.theta(i).is_finite() && self.rho(i).is_finite() && self.z_mm[i].is_finite()
+        };
+        if let Some(index) = (0..z).position(|i| !finite(i)) {
             return Err(SignalError::NotFinite { index });
         }
         if let Some(i) = (1..a).position(|i| self.angle(i) < self.angle(i - 1)) {
@@ -238,11 +359,7 @@ impl PathSignal {
         let mut first = 0;
         while first < self.len() {
             let rev = (self.angle(first) / TAU).floor();
-            let t0 = self.theta_rad[0];
-            let last = first
-                + self.theta_rad[first..]
-                    .partition_point(|t| ((t - t0).abs() / TAU).floor() <= rev)
-                - 1;
+            let last = first_past(first, self.len(), |i| (self.angle(i) / TAU).floor() <= rev) - 1;
             let span = self.angle(last) - self.angle(first);
             if last > first && span > 0.0 {
                 densest = densest.max(TAU * (last - first) as f64 / span);
@@ -263,8 +380,8 @@ impl PathSignal {
         let m = self.samples_per_rev();
         Ok(UniformSignal {
             samples_per_rev: m,
-            z_mm: self.resample(&self.z_mm, m),
-            rho_mm: self.resample(&self.rho_mm, m),
+            z_mm: self.resample(|i| self.z_mm[i], m),
+            rho_mm: self.resample(|i| self.rho(i), m),
         })
     }
 
@@ -275,11 +392,12 @@ impl PathSignal {
         if self.check().is_err() || values.len() != self.len() {
             return Vec::new();
         }
-        self.resample(values, self.samples_per_rev())
+        self.resample(|i| values[i], self.samples_per_rev())
     }
 
-    /// `values` linearly interpolated at `m` samples per revolution from the first point.
-    fn resample(&self, values: &[f64], m: usize) -> Vec<f64> {
+    /// The values `value(i)` of the points linearly interpolated at `m` samples per revolution
+    /// from the first point.
+    fn resample(&self, value: impl Fn(usize) -> f64, m: usize) -> Vec<f64> {
         let step = TAU / m as f64;
         let count = ((self.span_rad() / step + 1e-6).floor() as usize + 1).max(2);
         let mut out = Vec::with_capacity(count);
@@ -295,7 +413,8 @@ impl PathSignal {
             } else {
                 1.0
             };
-            out.push(values[k] + t * (values[k + 1] - values[k]));
+            let (v0, v1) = (value(k), value(k + 1));
+            out.push(v0 + t * (v1 - v0));
         }
         out
     }
@@ -306,7 +425,7 @@ impl PathSignal {
     /// (`2·(s_{i+½} − s_{i−½})/(φ_{i+1} − φ_{i−1})`, exact for a parabola). Segments of zero
     /// angle are skipped.
     pub fn angle_extremes(&self, values: &[f64]) -> AngleExtremes {
-        let n = values.len().min(self.theta_rad.len());
+        let n = values.len().min(self.angles());
         let mut e = AngleExtremes::default();
         let mut prev: Option<(f64, f64)> = None; // (slope, angle step) of the segment before
         for i in 0..n.saturating_sub(1) {
@@ -330,6 +449,17 @@ impl PathSignal {
         }
         e
     }
+}
+
+/// The first index in `from..to` where `before` stops holding (`to` if it never does), for a
+/// `before` that holds up to some index and not after it (a binary search).
+fn first_past(from: usize, to: usize, before: impl Fn(usize) -> bool) -> usize {
+    let (mut lo, mut hi) = (from, to);
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        if before(mid) { lo = mid + 1 } else { hi = mid }
+    }
+    lo
 }
 
 /// The gain of the non-symmetric residual `z − S` for a tone of `cycles_per_rev` on a grid of
@@ -523,15 +653,63 @@ pub(crate) mod tests {
         z: impl Fn(f64, f64) -> f64,
     ) -> PathSignal {
         let count = (revs * per_rev as f64).round() as usize + 1;
-        let mut s = PathSignal::default();
+        let (mut theta, mut radius, mut height) = (Vec::new(), Vec::new(), Vec::new());
         for k in 0..count {
             let phi = k as f64 * TAU / per_rev as f64;
             let rho = r0 - feed * phi / TAU;
-            s.theta_rad.push(phi);
-            s.rho_mm.push(rho);
-            s.z_mm.push(z(rho, phi));
+            theta.push(phi);
+            radius.push(rho);
+            height.push(z(rho, phi));
         }
-        s
+        PathSignal::from_columns(theta, radius, height)
+    }
+
+    #[test]
+    fn an_indexed_signal_holds_the_columns_from_the_first_point_off_its_spiral() {
+        use crate::job::{Direction, Sampling};
+        use crate::path::SpiralPoint;
+        let angle = Sampling::ConstantAngle { points_per_rev: 50 };
+        let spiral = Spiral::new(2.0, 0.1, &angle, Direction::Cw, 30.0).unwrap();
+        let point = |sp: SpiralPoint, z: f64| PathPoint {
+            index: 0,
+            rho: sp.rho,
+            theta: sp.theta,
+            z,
+            contact: [0.0; 3],
+            contact_angle: 0.0,
+            at_arc_end: false,
+        };
+        let own: Vec<PathPoint> = (spiral.points().enumerate())
+            .map(|(i, sp)| point(sp, 1e-3 * i as f64))
+            .collect();
+        assert_eq!(own.len(), 1001);
+        let signal_of = |points: &[PathPoint]| {
+            let mut s = PathSignal::for_spiral(&spiral, points.len());
+            points.iter().for_each(|p| s.push(p));
+            for (i, p) in points.iter().enumerate() {
+                let got = [s.theta(i), s.rho(i), s.z_mm[i]].map(f64::to_bits);
+                assert_eq!(got, [p.theta, p.rho, p.z].map(f64::to_bits), "point {i}");
+            }
+            s
+        };
+        // The spiral's own points: their angles and radii computed from the index are the
+        // iterator's, to the bit, and only the heights are held.
+        assert!(signal_of(&own).is_indexed());
+        // A point moved (as two-way compensation moves them), or one past the spiral's last:
+        // the columns are held from there on, those before computed again.
+        let mut moved = own.clone();
+        moved[700].rho += 1e-9;
+        assert!(!signal_of(&moved).is_indexed());
+        let mut longer = own.clone();
+        longer.push(own[1000]);
+        assert!(!signal_of(&longer).is_indexed());
+        // A spiral walked by its step rule has its columns held from the start.
+        let arc = Sampling::ConstantArc {
+            arc_length_mm: 0.01,
+            max_angle_step_deg: 5.0,
+        };
+        let arc = Spiral::new(2.0, 0.1, &arc, Direction::Ccw, 0.0).unwrap();
+        assert!(!PathSignal::for_spiral(&arc, 0).is_indexed());
     }
 
     #[test]
@@ -548,14 +726,14 @@ pub(crate) mod tests {
     #[test]
     fn uneven_paths_are_interpolated_linearly_at_their_densest_rate() {
         // Steps of 0.01 rad for the first revolution, 0.05 rad after: M = ⌈2π/0.01⌉ = 629.
-        let mut s = PathSignal::default();
+        let mut theta = Vec::new();
         let mut phi = 0.0;
         while phi < 3.0 * TAU {
-            s.theta_rad.push(phi);
-            s.rho_mm.push(1.0);
-            s.z_mm.push(2.0 * phi + 1.0);
+            theta.push(phi);
             phi += if phi < TAU { 0.01 } else { 0.05 };
         }
+        let (rho, z) = (vec![1.0; theta.len()], theta.iter().map(|a| 2.0 * a + 1.0));
+        let s = PathSignal::from_columns(theta.clone(), rho, z.collect());
         let u = s.uniform().unwrap();
         assert_eq!(u.samples_per_rev, 629);
         // A linear z is reproduced exactly by linear interpolation (to rounding).
@@ -563,22 +741,19 @@ pub(crate) mod tests {
             assert!((z - (2.0 * j as f64 * u.step_rad() + 1.0)).abs() < 1e-12);
         }
         // θ starts at 0 here: it is the angle turned.
-        let back = u.at_path(&u.z_mm, &s.theta_rad);
+        let back = u.at_path(&u.z_mm, &theta);
         for (a, b) in back.iter().zip(&s.z_mm) {
             assert!((a - b).abs() < 1e-12);
         }
         // Any other column lands on the same grid: a quadratic in angle is interpolated
         // linearly between the two points around each sample.
-        let q: Vec<f64> = s.theta_rad.iter().map(|a| a * a).collect();
+        let q: Vec<f64> = theta.iter().map(|a| a * a).collect();
         let on_grid = s.uniform_values(&q);
         assert_eq!(on_grid.len(), u.len());
         for (j, v) in on_grid.iter().enumerate() {
             let phi = j as f64 * u.step_rad();
-            let k = s
-                .theta_rad
-                .partition_point(|a| *a < phi)
-                .clamp(1, s.len() - 1);
-            let (a0, a1) = (s.theta_rad[k - 1], s.theta_rad[k]);
+            let k = theta.partition_point(|a| *a < phi).clamp(1, s.len() - 1);
+            let (a0, a1) = (theta[k - 1], theta[k]);
             let linear = a0 * a0 + (phi - a0) / (a1 - a0) * (a1 * a1 - a0 * a0);
             assert!(
                 (v - linear).abs() < 1e-12,

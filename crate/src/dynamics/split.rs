@@ -201,7 +201,7 @@ pub enum SplitError {
     /// ```
     /// use spiralcam::dynamics::split::split;
     /// use spiralcam::job::SplitSpec;
-    /// let s = spiralcam::dynamics::path_signal::PathSignal { theta_rad: vec![0.0, 1.0, 2.0], rho_mm: vec![1.0; 3], z_mm: vec![0.0; 3] };
+    /// let s = spiralcam::dynamics::path_signal::PathSignal::from_columns(vec![0.0, 1.0, 2.0], vec![1.0; 3], vec![0.0; 3]);
     /// let e = split(&s, &SplitSpec::LowPass { cutoff_hz: -1.0 }, 60.0, None).unwrap_err();
     /// assert!(e.to_string().starts_with("strategy.split.cutoff_hz = -1: must be"));
     /// ```
@@ -559,7 +559,7 @@ impl Context<'_> {
         let s = self.signal;
         let om = omega(self.rpm);
         let (ez, ew) = (motion.z, motion.w);
-        let rho = |i: usize| s.rho_mm.get(i).copied();
+        let rho = |i: usize| (i < s.len()).then(|| s.rho(i));
         let check = |limit: Limit, value: f64, at: Option<f64>| Check {
             limit,
             value,
@@ -646,8 +646,9 @@ mod tests {
     /// exact for whole frequencies over whole revolutions of equal steps).
     fn tone(s: &PathSignal, v: &[f64], k: f64, skip: f64) -> f64 {
         let inside = |a: f64| a >= skip * TAU - 1e-9 && a < s.span_rad() - skip * TAU - 1e-9;
-        let (mut c, mut d, mut n) = (0.0, 0.0, 0.0);
-        for (a, x) in s.theta_rad.iter().zip(v).filter(|(a, _)| inside(**a)) {
+        let (mut c, mut d, mut n) = (0.0f64, 0.0f64, 0.0);
+        let angles = (0..s.len()).map(|i| s.theta(i));
+        for (a, x) in angles.zip(v).filter(|(a, _)| inside(*a)) {
             c += x * (k * a).cos();
             d += x * (k * a).sin();
             n += 1.0;
@@ -761,7 +762,7 @@ mod tests {
         assert_adds_up(&s, &out);
         let bias = 0.02 * 0.05f64.powi(2) * (1.0 - 1.0 / 128f64.powi(2)) / 12.0;
         for i in 0..s.len() {
-            let (r, t) = (s.rho_mm[i], s.angle(i));
+            let (r, t) = (s.rho(i), s.angle(i));
             let want = 0.003 * r * (2.0 * t).cos() - bias;
             assert!(
                 (out.w_fts_mm[i] - want).abs() < 1e-12,

@@ -102,6 +102,35 @@ pub struct SpiralPoint {
     pub theta: f64,
 }
 
+/// The points of a constant-angle spiral as a function of their index k = 0 … K: the one
+/// expression [`SpiralPoints`] computes them by (`ρ = (K − k)·f/N`, `θ = θ₀ ± 2π·k/N`), so a
+/// point computed again from its index has the same bits. The dynamics read a path's angles and
+/// radii from it instead of holding them ([`crate::dynamics::path_signal::PathSignal`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IndexedPoints {
+    theta0: f64,
+    sign: f64,
+    feed: f64,
+    per_rev: f64,
+    steps: u64,
+}
+
+impl IndexedPoints {
+    /// Point `k` (at most [`Self::last`]).
+    pub fn at(&self, k: u64) -> SpiralPoint {
+        let remaining = self.steps.saturating_sub(k) as f64;
+        SpiralPoint {
+            rho: remaining * self.feed / self.per_rev,
+            theta: self.theta0 + self.sign * TAU * (k as f64) / self.per_rev,
+        }
+    }
+
+    /// The index of the last point, K (at the centre).
+    pub fn last(&self) -> u64 {
+        self.steps
+    }
+}
+
 /// A validated spiral.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Spiral {
@@ -443,6 +472,19 @@ impl Spiral {
         }
     }
 
+    /// The points by their index, on a constant-angle spiral (not one given as a list); `None`
+    /// on any other, whose points are found by walking the step rule.
+    pub fn indexed_points(&self) -> Option<IndexedPoints> {
+        let n = self.turn_points()?;
+        Some(IndexedPoints {
+            theta0: self.theta0,
+            sign: self.sign,
+            feed: self.feed,
+            per_rev: n as f64,
+            steps: self.angle_steps(n),
+        })
+    }
+
     /// (sin, cos) of the `step`-th of `n` angles of a turn from the start angle.
     fn step_sin_cos(&self, step: usize, n: usize) -> (f64, f64) {
         (self.theta0 + self.sign * TAU * step as f64 / n as f64).sin_cos()
@@ -707,11 +749,14 @@ impl Iterator for SpiralPoints {
                 p
             }
             State::Angle { k, steps, n } => {
-                let remaining = (*steps - *k) as f64;
-                let p = SpiralPoint {
-                    rho: remaining * self.spiral.feed / *n,
-                    theta: t0 + sign * TAU * (*k as f64) / *n,
+                let rule = IndexedPoints {
+                    theta0: t0,
+                    sign,
+                    feed: self.spiral.feed,
+                    per_rev: *n,
+                    steps: *steps,
                 };
+                let p = rule.at(*k);
                 self.done = *k == *steps;
                 *k += 1;
                 Some(p)

@@ -60,7 +60,7 @@ pub const MAX_GRID_PER_POINT: usize = 4;
 /// path gives it (turned cumulatively, radians; [`Self::theta`]), the radius ρ (X, mm;
 /// [`Self::rho`]) and the commanded Z. The analysis reads the angle turned since the first
 /// point, `|θ_i − θ_0|` ([`Self::angle`]), which must not decrease.
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, Default)]
 pub struct PathSignal {
     angles_radii: AnglesRadii,
     /// Commanded Z (the tool tip), mm.
@@ -70,7 +70,7 @@ pub struct PathSignal {
 /// θ and ρ of the points: held (16 bytes a point), or, where every point is its spiral's
 /// point of the same index (one-way compensation of a constant-angle spiral), computed from
 /// the index to the same bits ([`PathSignal::for_spiral`]).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 enum AnglesRadii {
     Held {
         theta_rad: Vec<f64>,
@@ -219,12 +219,13 @@ impl PathSignal {
                 q.theta.to_bits() == p.theta.to_bits() && q.rho.to_bits() == p.rho.to_bits()
             });
             if !same {
-                let mut held = Self::with_capacity(self.z_mm.capacity());
-                for k in 0..i {
-                    let q = points.at(k as u64);
-                    held.push_columns(q.theta, q.rho);
+                let n = self.z_mm.capacity();
+                let (mut theta_rad, mut rho_mm) = (Vec::with_capacity(n), Vec::with_capacity(n));
+                for q in (0..i as u64).map(|k| points.at(k)) {
+                    theta_rad.push(q.theta);
+                    rho_mm.push(q.rho);
                 }
-                self.angles_radii = held.angles_radii;
+                self.angles_radii = AnglesRadii::Held { theta_rad, rho_mm };
             }
         }
         self.push_columns(p.theta, p.rho);

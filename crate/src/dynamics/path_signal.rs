@@ -21,8 +21,9 @@
 //!
 //! **Memory.** A path is held as its columns θ, ρ and z, 24 bytes a point, except where its
 //! angles and radii are a function of the index (one-way compensation of a constant-angle
-//! spiral, [`PathSignal::for_spiral`]): then they are computed again whenever they are read,
-//! by the planner's own expression, and only z is held (8 bytes a point).
+//! spiral, or of a spiral given as a list, [`PathSignal::for_spiral`]): then they are computed
+//! again by the planner's own expression, or read from the spiral's list, whenever they are
+//! read, and only z is held (8 bytes a point).
 //!
 //! **Rotationally symmetric part** (paper 002, "surface decomposition": a rotationally
 //! symmetric surface cut by X, C and Z plus a freeform remainder). On a spiral each radius is
@@ -68,8 +69,8 @@ pub struct PathSignal {
 }
 
 /// θ and ρ of the points: held (16 bytes a point), or, where every point is its spiral's
-/// point of the same index (one-way compensation of a constant-angle spiral), computed from
-/// the index to the same bits ([`PathSignal::for_spiral`]).
+/// point of the same index (one-way compensation of a constant-angle spiral or of one given
+/// as a list), its spiral's ([`PathSignal::for_spiral`]).
 #[derive(Debug, Clone)]
 enum AnglesRadii {
     Held {
@@ -177,10 +178,10 @@ impl PathSignal {
     }
 
     /// An empty signal with room for `n` points of a path along `spiral`. Where the spiral's
-    /// points are a function of their index ([`Spiral::indexed_points`]: constant angle), their
-    /// angles and radii are not held while the points pushed are the spiral's own (the path's
-    /// point `i` at the spiral's point `i`, as one-way compensation leaves them): 8 bytes a
-    /// point instead of 24. The first point that is not (two-way compensation moves both) has
+    /// points are a function of their index ([`Spiral::indexed_points`]: constant angle, or a
+    /// list the spiral holds), their angles and radii are not held while the points pushed are
+    /// the spiral's own (the path's point `i` at the spiral's point `i`, as one-way
+    /// compensation leaves them): 8 bytes a point instead of 24. The first point that is not (two-way compensation moves both) has
     /// them held from then on, those before it computed again, so the columns are always what
     /// was pushed.
     pub fn for_spiral(spiral: &Spiral, n: usize) -> Self {
@@ -213,7 +214,7 @@ impl PathSignal {
     /// Appends a point.
     pub fn push(&mut self, p: &PathPoint) {
         let i = self.z_mm.len();
-        if let AnglesRadii::Indexed(points) = self.angles_radii {
+        if let AnglesRadii::Indexed(points) = &self.angles_radii {
             let own = (i as u64 <= points.last()).then(|| points.at(i as u64));
             let same = own.is_some_and(|q| {
                 q.theta.to_bits() == p.theta.to_bits() && q.rho.to_bits() == p.rho.to_bits()
@@ -704,6 +705,15 @@ pub(crate) mod tests {
         let mut longer = own.clone();
         longer.push(own[1000]);
         assert!(!signal_of(&longer).is_indexed());
+        // A spiral given as a list: its points read from the list it holds, to the bit.
+        let list: Vec<SpiralPoint> = spiral.points().collect();
+        let listed = Spiral::from_points(0.1, &angle, list).unwrap();
+        let mut s = PathSignal::for_spiral(&listed, own.len());
+        own.iter().for_each(|p| s.push(p));
+        assert!(s.is_indexed());
+        for (i, p) in own.iter().enumerate() {
+            assert_eq!([s.theta(i), s.rho(i)], [p.theta, p.rho], "listed point {i}");
+        }
         // A spiral walked by its step rule has its columns held from the start.
         let arc = Sampling::ConstantArc {
             arc_length_mm: 0.01,

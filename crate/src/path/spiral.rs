@@ -102,12 +102,41 @@ pub struct SpiralPoint {
     pub theta: f64,
 }
 
-/// The points of a constant-angle spiral as a function of their index k = 0 … K: the one
-/// expression [`SpiralPoints`] computes them by (`ρ = (K − k)·f/N`, `θ = θ₀ ± 2π·k/N`), so a
-/// point computed again from its index has the same bits. The dynamics read a path's angles and
-/// radii from it instead of holding them ([`crate::dynamics::path_signal::PathSignal`]).
+/// The points of a spiral whose points are a function of their index k = 0 … K, the same
+/// bits as [`SpiralPoints`] gives them: a constant-angle spiral's by the one expression the
+/// iterator computes them by, a spiral given as a list ([`Spiral::from_points`]) from the list
+/// it holds. The dynamics read a path's angles and radii from it instead of holding them
+/// ([`crate::dynamics::path_signal::PathSignal`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct IndexedPoints(Indexed);
+
+#[derive(Debug, Clone, PartialEq)]
+enum Indexed {
+    Angle(AngleRule),
+    Listed(Arc<[SpiralPoint]>),
+}
+
+impl IndexedPoints {
+    /// Point `k` (at most [`Self::last`]).
+    pub fn at(&self, k: u64) -> SpiralPoint {
+        match &self.0 {
+            Indexed::Angle(rule) => rule.at(k),
+            Indexed::Listed(points) => points[(k as usize).min(points.len() - 1)],
+        }
+    }
+
+    /// The index of the last point, K (at the centre).
+    pub fn last(&self) -> u64 {
+        match &self.0 {
+            Indexed::Angle(rule) => rule.steps,
+            Indexed::Listed(points) => points.len() as u64 - 1,
+        }
+    }
+}
+
+/// Point k of a constant-angle spiral: `ρ = (K − k)·f/N`, `θ = θ₀ ± 2π·k/N`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct IndexedPoints {
+struct AngleRule {
     theta0: f64,
     sign: f64,
     feed: f64,
@@ -115,19 +144,13 @@ pub struct IndexedPoints {
     steps: u64,
 }
 
-impl IndexedPoints {
-    /// Point `k` (at most [`Self::last`]).
-    pub fn at(&self, k: u64) -> SpiralPoint {
+impl AngleRule {
+    fn at(&self, k: u64) -> SpiralPoint {
         let remaining = self.steps.saturating_sub(k) as f64;
         SpiralPoint {
             rho: remaining * self.feed / self.per_rev,
             theta: self.theta0 + self.sign * TAU * (k as f64) / self.per_rev,
         }
-    }
-
-    /// The index of the last point, K (at the centre).
-    pub fn last(&self) -> u64 {
-        self.steps
     }
 }
 
@@ -472,17 +495,20 @@ impl Spiral {
         }
     }
 
-    /// The points by their index, on a constant-angle spiral (not one given as a list); `None`
-    /// on any other, whose points are found by walking the step rule.
+    /// The points by their index, on a constant-angle spiral or one given as a list; `None` on
+    /// any other, whose points are found by walking the step rule.
     pub fn indexed_points(&self) -> Option<IndexedPoints> {
+        if let Some(points) = &self.explicit {
+            return Some(IndexedPoints(Indexed::Listed(points.clone())));
+        }
         let n = self.turn_points()?;
-        Some(IndexedPoints {
+        Some(IndexedPoints(Indexed::Angle(AngleRule {
             theta0: self.theta0,
             sign: self.sign,
             feed: self.feed,
             per_rev: n as f64,
             steps: self.angle_steps(n),
-        })
+        })))
     }
 
     /// (sin, cos) of the `step`-th of `n` angles of a turn from the start angle.
@@ -749,7 +775,7 @@ impl Iterator for SpiralPoints {
                 p
             }
             State::Angle { k, steps, n } => {
-                let rule = IndexedPoints {
+                let rule = AngleRule {
                     theta0: t0,
                     sign,
                     feed: self.spiral.feed,

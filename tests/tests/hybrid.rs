@@ -366,6 +366,71 @@ fn a_finishing_path_of_28_4_m_points_is_admitted_with_its_dynamics() {
     assert!(least <= said && said <= least * (1.0 + 1e-5), "{e}");
 }
 
+/// A path whose densest turn is denser than the others (constant arc: the rim's) has more
+/// samples on the dynamics' grid than points: the estimate counts them (within 2 % of the grid
+/// the dynamics compute on), its memory goes with them, and a memory bound refuses on them,
+/// naming a feed that would do; the points alone would have been admitted.
+#[test]
+fn the_dynamics_memory_goes_with_the_samples_of_their_grid() {
+    let mut job = coarse_grid_fts();
+    job.strategy.sampling = spiralcam::job::Sampling::ConstantArc {
+        arc_length_mm: 0.05,
+        max_angle_step_deg: 10.0,
+    };
+    let planner = Planner::new(&job).unwrap();
+    let cost = planner.cost(None).unwrap();
+    let points: Vec<_> = planner.points().map(|p| p.unwrap()).collect();
+    let grid = PathSignal::from_points(points.iter().copied())
+        .uniform()
+        .unwrap()
+        .len() as f64;
+    let samples = cost.dynamics_samples.unwrap() as f64;
+    assert!(samples > 1.5 * cost.points as f64, "{cost:?}");
+    assert!(
+        (samples - grid).abs() <= 0.02 * grid,
+        "{samples} against {grid}"
+    );
+    let held = cost.dynamics_memory_bytes.unwrap();
+    let columns = 24 * cost.points;
+    let per_sample = spiralcam::dynamics::BYTES_PER_SAMPLE as f64;
+    assert!(
+        (held - columns) as f64 >= per_sample * (samples - 1.0),
+        "{cost:?}"
+    );
+    // A bound between the points' share and the whole: refused on the grid.
+    let outputs = Outputs {
+        nc: true,
+        ..Outputs::default()
+    };
+    let feed = job.strategy.feed_mm_per_rev;
+    let points_only = cost.points * spiralcam::dynamics::BYTES_PER_POINT;
+    let bound = Limits {
+        max_dynamics_bytes: Some((points_only + held) / 2),
+        ..Limits::default()
+    };
+    let e = bound.check(&cost, outputs, feed).unwrap_err().to_string();
+    assert!(
+        e.contains(" samples, which the machine dynamics hold in memory"),
+        "{e}"
+    );
+    let said: f64 = e
+        .split("a feed of at least ")
+        .nth(1)
+        .unwrap()
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    let least = feed * held as f64 / ((points_only + held) / 2) as f64;
+    assert!(least <= said && said <= least * (1.0 + 1e-5), "{e}");
+    let roomy = Limits {
+        max_dynamics_bytes: Some(held),
+        ..Limits::default()
+    };
+    roomy.check(&cost, outputs, feed).unwrap();
+}
+
 /// The dynamics' grid as the estimate counts it ([`grid_samples`]) against the grid they
 /// compute on (`PathSignal::uniform`): a constant-angle path (exactly), and a constant-arc
 /// one, densest at the rim (within 1 %: the estimate takes the rim's step, the grid the mean

@@ -533,6 +533,12 @@ const MAX_DOWNLOAD_BYTES: u64 = 1_000_000_000;
 /// download's buffer, in a wasm32 memory of at most 4 GiB.
 const MAX_DYNAMICS_POINTS: u64 = 17_000_000;
 
+/// The most memory the machine dynamics may hold in the page, bytes: their estimate for
+/// [`MAX_DYNAMICS_POINTS`] points with a grid sample a point (1.9 GB). A path whose densest
+/// turn is denser than the others (HCAA, constant arc) has more samples than points, and
+/// reaches it with fewer points.
+const MAX_DYNAMICS_BYTES: u64 = MAX_DYNAMICS_POINTS * spiralcam::dynamics::BYTES_PER_POINT;
+
 /// The job's cost ([`Planner::cost`]; no clock in the browser), refused beyond the page's
 /// limits for the file that `outputs` names.
 fn admit(planner: &Planner, outputs: Outputs) -> Result<Cost, JsError> {
@@ -542,6 +548,7 @@ fn admit(planner: &Planner, outputs: Outputs) -> Result<Cost, JsError> {
     let limits = Limits {
         max_output_bytes: MAX_DOWNLOAD_BYTES,
         max_dynamics_points: MAX_DYNAMICS_POINTS,
+        max_dynamics_bytes: Some(MAX_DYNAMICS_BYTES),
         ..Limits::default()
     };
     limits
@@ -549,8 +556,9 @@ fn admit(planner: &Planner, outputs: Outputs) -> Result<Cost, JsError> {
         .map_err(|e| {
             JsError::new(&format!(
                 "{e} (in the page a download is at most 1 GB and the machine dynamics take at \
-                 most {MAX_DYNAMICS_POINTS} points; the command line writes any size and takes \
-                 {} points with the dynamics)",
+                 most {MAX_DYNAMICS_POINTS} points and {}; the command line writes any size and \
+                 takes {} points with the dynamics)",
+                spiralcam::report::bytes(MAX_DYNAMICS_BYTES),
                 spiralcam::dynamics::MAX_POINTS
             ))
         })?;

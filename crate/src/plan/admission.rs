@@ -25,6 +25,7 @@
 use super::{PlanError, Planner};
 use crate::dynamics;
 use crate::field::{FieldError, feed_within, short};
+use crate::job::Compensation;
 use crate::nc::{CsvWriter, FtsTableWriter, NcWriter};
 use crate::parallel::workers;
 use crate::path::MAX_POINTS;
@@ -45,6 +46,11 @@ pub struct Limits {
     /// Most points when the machine dynamics run (they hold the path in memory); at most
     /// [`dynamics::MAX_POINTS`].
     pub max_dynamics_points: u64,
+    /// Most memory the machine dynamics may hold, bytes (their estimate,
+    /// [`crate::dynamics::memory_bytes`]: the path's columns and their grid, which a path whose
+    /// densest turn is denser than the others makes larger than its points); `None`: not
+    /// bounded beyond the points.
+    pub max_dynamics_bytes: Option<u64>,
     /// Most bytes of the files written together.
     pub max_output_bytes: u64,
     /// Longest estimated time, seconds; `None`: not bounded.
@@ -56,6 +62,7 @@ impl Default for Limits {
         Self {
             max_points: MAX_POINTS,
             max_dynamics_points: dynamics::MAX_POINTS,
+            max_dynamics_bytes: None,
             max_output_bytes: DEFAULT_MAX_OUTPUT_BYTES,
             max_seconds: None,
         }
@@ -113,18 +120,23 @@ impl Planner {
                 Some(n * computed * compensate + n * written * self.block_seconds(&probes, now)?)
             }
         };
-        // The dynamics' analysis, timed on this machine and scaled by their grid's samples: the
-        // densest turn's points from the probes' steps (points per mm × the feed).
-        let dynamics_seconds = match timed {
-            Some((now, _)) if passes == 2 => {
-                let feed = self.job().strategy.feed_mm_per_rev;
-                let densest = probes.iter().map(|p| p.per_mm * feed).fold(0.0, f64::max);
-                let revolutions = self.spiral().revolutions();
-                let samples = dynamics::grid_samples(path_points, revolutions, densest);
+        // The samples of the dynamics' grid: the densest turn's points from the probes' steps
+        // (points per mm × the feed) on every turn. Their analysis is timed on this machine and
+        // scaled by them; their memory goes with them and the path's columns.
+        let feed = self.job().strategy.feed_mm_per_rev;
+        let densest = probes.iter().map(|p| p.per_mm * feed).fold(0.0, f64::max);
+        let samples = (passes == 2)
+            .then(|| dynamics::grid_samples(path_points, self.spiral().revolutions(), densest));
+        let dynamics_seconds = match (timed, samples) {
+            (Some((now, _)), Some(samples)) => {
                 dynamics::seconds_per_sample(self.job(), densest, now).map(|s| s * samples)
             }
             _ => None,
         };
+        // The angles and radii are not held where the spiral gives them by the index and
+        // one-way compensation leaves them as they are.
+        let indexed = self.spiral().indexed_points().is_some()
+            && self.job().strategy.compensation != Compensation::TwoWay;
         let seconds = seconds.map(|s| s + dynamics_seconds.unwrap_or(0.0));
         let split = self.job().strategy.split.is_some();
         let n = path_points as f64;
@@ -135,7 +147,8 @@ impl Planner {
             csv_bytes: crate::nc::csv::HEADER.len() as u64 + (w.csv_row * n) as u64,
             fts_table_bytes: split
                 .then(|| crate::nc::fts_table::HEADER.len() as u64 + (w.fts_row * n) as u64),
-            dynamics_memory_bytes: (passes == 2).then(|| path_points * dynamics::BYTES_PER_POINT),
+            dynamics_samples: samples.map(|s| s as u64),
+            dynamics_memory_bytes: samples.map(|s| dynamics::memory_bytes(path_points, s, indexed)),
             fts_grid_bytes: split
                 .then(|| crate::nc::fts_grid::max_bytes(dynamics::fts_grid::MAX_ENTRIES)),
             seconds,
@@ -301,6 +314,25 @@ impl Limits {
                     short(points),
                     limits.max_dynamics_points,
                     at_least(points / limits.max_dynamics_points as f64)
+                ),
+            ));
+        }
+        // Their memory goes with the samples of their grid too (both go as 1/f).
+        let held = cost.dynamics_memory_bytes.filter(|_| cost.passes == 2);
+        if let (Some(max), Some(held)) = (limits.max_dynamics_bytes, held)
+            && held > max
+        {
+            return Err(FieldError::new(
+                field,
+                feed,
+                format!(
+                    "gives about {} points and a grid of {} samples, which the machine dynamics \
+                     hold in memory: about {}, above {}: a feed of at least {} mm/rev",
+                    short(points),
+                    short(cost.dynamics_samples.unwrap_or(cost.points) as f64),
+                    bytes(held),
+                    bytes(max),
+                    at_least(held as f64 / max as f64)
                 ),
             ));
         }

@@ -44,7 +44,12 @@ pub struct Cost {
     /// the dynamics, so the estimate is the bound of its entries
     /// ([`crate::dynamics::fts_grid::MAX_ENTRIES`]) at the widest entry and number.
     pub fts_grid_bytes: Option<u64>,
-    /// Memory the machine dynamics hold, bytes, when they run.
+    /// Samples of the machine dynamics' uniform grid, when they run: at least the points, more
+    /// where the path's densest turn is denser than the others
+    /// ([`crate::dynamics::grid_samples`]).
+    pub dynamics_samples: Option<u64>,
+    /// Memory the machine dynamics hold, bytes, when they run
+    /// ([`crate::dynamics::memory_bytes`]).
     pub dynamics_memory_bytes: Option<u64>,
     /// Time to plan and write, seconds (with a clock; none in the browser's estimate), the
     /// machine dynamics' analysis included.

@@ -3,9 +3,9 @@
 Memory must stay flat: the planner streams, so the peak resident set should not grow with the
 point count. Prints one line per size. Then the machine dynamics, which hold the path (1 M points
 of the sine grid `sinusoid-grid-fts.json` at 1 000 points a revolution, each kind of split and
-machine limits alone): their peak against the estimate the plan is admitted on
-(`dynamics::BYTES_PER_POINT`, the report's `estimate.dynamics_memory_bytes`), each run measured
-alone. Usage: python3 tests/bench/peak_memory.py [BINARY] (default target/release/spiralcam;
+machine limits alone, and the same part at HCAA, whose grid has more samples than points): their
+peak against the estimate the plan is admitted on (`dynamics::memory_bytes`, the report's
+`estimate.dynamics_memory_bytes` beside its `dynamics_samples`), each run measured alone. Usage: python3 tests/bench/peak_memory.py [BINARY] (default target/release/spiralcam;
 build it with `cargo build --release`).
 """
 import json
@@ -68,18 +68,22 @@ def dynamics(binary, tmp):
         base = json.load(f)
     base["strategy"]["feed_mm_per_rev"] = 0.004
     base["strategy"]["sampling"] = {"type": "constant_angle", "points_per_rev": 1000}
+    hcaa = {"type": "hcaa", "pv_tolerance_um": 0.01}
     kinds = {
-        "automatic split": {"type": "auto"},
-        "symmetric split": {"type": "symmetric"},
-        "low-pass split 20 Hz": {"type": "low_pass", "cutoff_hz": 20.0},
-        "machine limits, no split": None,
+        "automatic split": ({"type": "auto"}, None),
+        "symmetric split": ({"type": "symmetric"}, None),
+        "low-pass split 20 Hz": ({"type": "low_pass", "cutoff_hz": 20.0}, None),
+        "machine limits, no split": (None, None),
+        "automatic split, HCAA 0.01 um (a grid denser than the points)": ({"type": "auto"}, hcaa),
     }
-    for name, split in kinds.items():
+    for name, (split, sampling) in kinds.items():
         job = json.loads(json.dumps(base))
         if split is None:
             del job["strategy"]["split"]
         else:
             job["strategy"]["split"] = split
+        if sampling is not None:
+            job["strategy"]["sampling"] = sampling
         path, nc, report = (os.path.join(tmp, n) for n in ("dyn.json", "dyn.ngc", "dyn-report.json"))
         with open(path, "w") as f:
             json.dump(job, f)
@@ -89,9 +93,10 @@ def dynamics(binary, tmp):
         with open(report) as f:
             r = json.load(f)
         estimate = r["estimate"]["dynamics_memory_bytes"]
+        samples = r["estimate"]["dynamics_samples"]
         print(
-            f"dynamics, {name}: {r['points']} points, peak RSS {peak / 1024:.0f} MiB "
-            f"(estimate {estimate / 2**20:.0f} MiB), {seconds:.2f} s"
+            f"dynamics, {name}: {r['points']} points, {samples} grid samples, peak RSS "
+            f"{peak / 1024:.0f} MiB (estimate {estimate / 2**20:.0f} MiB), {seconds:.2f} s"
         )
         os.remove(nc)
 

@@ -180,10 +180,10 @@ impl PathSignal {
     /// An empty signal with room for `n` points of a path along `spiral`. Where the spiral's
     /// points are a function of their index ([`Spiral::indexed_points`]: constant angle, or a
     /// list the spiral holds), their angles and radii are not held while the points pushed are
-    /// the spiral's own (the path's point `i` at the spiral's point `i`, as one-way
-    /// compensation leaves them): 8 bytes a point instead of 24. The first point that is not (two-way compensation moves both) has
-    /// them held from then on, those before it computed again, so the columns are always what
-    /// was pushed.
+    /// the spiral's own (point `i` at the spiral's point `i`, as one-way compensation leaves
+    /// them): 8 bytes a point instead of 24. The first point that is not (two-way compensation
+    /// moves both) has them held from then on, those before it computed again, so the columns
+    /// are always what was pushed.
     pub fn for_spiral(spiral: &Spiral, n: usize) -> Self {
         match spiral.indexed_points() {
             Some(points) => Self {

@@ -295,17 +295,17 @@ impl PathSignal {
 
     /// Angle turned from the first point to the last, radians.
     pub fn span_rad(&self) -> f64 {
-        match self.angles() {
+        match self.columns().0 {
             0 => 0.0,
             n => self.angle(n - 1),
         }
     }
 
-    /// The number of angles: the points', unless the columns are ragged.
-    fn angles(&self) -> usize {
+    /// The numbers of angles and of radii: the points', unless held columns are ragged.
+    fn columns(&self) -> (usize, usize) {
         match &self.angles_radii {
-            AnglesRadii::Held { theta_rad, .. } => theta_rad.len(),
-            AnglesRadii::Indexed(_) => self.len(),
+            AnglesRadii::Held { theta_rad, rho_mm } => (theta_rad.len(), rho_mm.len()),
+            AnglesRadii::Indexed(_) => (self.len(), self.len()),
         }
     }
 
@@ -322,11 +322,7 @@ impl PathSignal {
     /// Checks that the columns agree, every value is finite, the angle never goes back and the
     /// path has at least 3 points over a positive angle.
     pub fn check(&self) -> Result<(), SignalError> {
-        let (a, z) = (self.angles(), self.z_mm.len());
-        let r = match &self.angles_radii {
-            AnglesRadii::Held { rho_mm, .. } => rho_mm.len(),
-            AnglesRadii::Indexed(_) => z,
-        };
+        let ((a, r), z) = (self.columns(), self.z_mm.len());
         if a != r || a != z {
             return Err(SignalError::Ragged {
                 angles: a,
@@ -427,7 +423,7 @@ impl PathSignal {
     /// (`2·(s_{i+½} − s_{i−½})/(φ_{i+1} − φ_{i−1})`, exact for a parabola). Segments of zero
     /// angle are skipped.
     pub fn angle_extremes(&self, values: &[f64]) -> AngleExtremes {
-        let n = values.len().min(self.angles());
+        let n = values.len().min(self.columns().0);
         let mut e = AngleExtremes::default();
         let mut prev: Option<(f64, f64)> = None; // (slope, angle step) of the segment before
         for i in 0..n.saturating_sub(1) {

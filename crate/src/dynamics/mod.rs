@@ -26,6 +26,7 @@
 pub mod axis_checks;
 pub mod fts_grid;
 pub mod path_signal;
+pub mod real_transform;
 pub mod spectrum;
 pub mod split;
 

@@ -53,24 +53,24 @@
 //! instantaneous frequency `(2πρ/λ)·|sin θ|` cycles/rev: its median over a revolution is
 //! `sin(π/4)·2πρ/λ`, its 95th percentile `sin(0.95·π/2)·2πρ/λ`.
 //!
-//! **Transforms.** Every record here is real, so every transform is a real-input one (`realfft`
-//! over `rustfft`: a record of even length L goes through a complex transform of L/2 and one
-//! pass of twiddles), which keeps bins 0 … L/2 only, the others being their conjugates: half the
-//! work of a complex transform, and 16 bytes a sample of the record with its output against 48
-//! for a complex transform in place with its scratch (the dynamics' peak memory). Making a
-//! transform's plan (its twiddle factors, 12 bytes a sample) costs about as much as running it,
-//! so records of one length share a plan ([`amplitude_spectrum_and_bands_on`]) and a plan is
-//! made on a second core while its record is prepared; the plans are deterministic, so the
-//! results are the same to the bit.
+//! **Transforms.** Every record here is real, so every transform is a real-input one
+//! ([`crate::dynamics::real_transform`]: a record of even length L goes through a complex
+//! transform of L/2 and one pass of twiddles), which keeps bins 0 … L/2 only, the others being
+//! their conjugates: half the work of a complex transform. A long record (from
+//! [`crate::dynamics::real_transform::IN_PLACE_FROM`] samples) is transformed in its own memory,
+//! 8 bytes a sample, with tables of about √L entries; a short one by `realfft` (16 bytes a sample
+//! with its output, and a plan of 12 whose making costs about as much as running it: records of
+//! one length share a plan ([`amplitude_spectrum_and_bands_on`]) and a plan is made on a second
+//! core while its record is prepared; the plans are deterministic, so the results are the same
+//! to the bit).
 
 use crate::dynamics::path_signal::{PathSignal, UniformSignal, hz, residual_gain};
+use crate::dynamics::real_transform::{RealForward, RealInverse};
 use crate::parallel::{both, fill_each};
-use realfft::{ComplexToReal, FftError, RealFftPlanner, RealToComplex};
 use rustfft::num_complex::Complex;
 use serde::Serialize;
 use std::convert::Infallible;
 use std::f64::consts::{PI, TAU};
-use std::sync::Arc;
 
 /// The most peaks listed.
 pub const MAX_PEAKS: usize = 8;
@@ -137,11 +137,11 @@ pub fn hann_amplitudes(x: Vec<f64>, len: usize) -> Vec<f64> {
         return Vec::new();
     }
     let len = len.max(x.len());
-    hann_amplitudes_by(&*forward_plan(len), x)
+    hann_amplitudes_by(&forward_plan(len), x)
 }
 
 /// [`hann_amplitudes`] padded to the length of the transform `forward` (at least `x`'s).
-fn hann_amplitudes_by(forward: &dyn RealToComplex<f64>, mut x: Vec<f64>) -> Vec<f64> {
+fn hann_amplitudes_by(forward: &RealForward, mut x: Vec<f64>) -> Vec<f64> {
     let n = x.len();
     if n < 2 {
         return Vec::new();
@@ -153,57 +153,26 @@ fn hann_amplitudes_by(forward: &dyn RealToComplex<f64>, mut x: Vec<f64>) -> Vec<
         gain += w;
         *v *= w;
     }
-    real_spectrum_by(forward, x)
+    forward
+        .spectrum(x)
         .iter()
         .enumerate()
         .map(|(j, c)| c.norm() * if j == 0 { 1.0 } else { 2.0 } / gain)
         .collect()
 }
 
-/// The spectrum of the real record `x` padded with zeros to the length L of the transform
-/// `forward` (at least `x`'s), bins 0 … L/2 (the others are their conjugates), by a real-input
-/// transform (`realfft`: for an even length, a complex transform of half the length; 16 bytes
-/// a sample of the record with its output, against 48 for a complex transform in place with
-/// its scratch). `x` is its scratch and is let go.
-pub(crate) fn real_spectrum_by(
-    forward: &dyn RealToComplex<f64>,
-    mut x: Vec<f64>,
-) -> Vec<Complex<f64>> {
-    let len = forward.len();
-    // Grown to the padded length exactly: `resize` alone would double the record's capacity.
-    x.reserve_exact(len.saturating_sub(x.len()));
-    x.resize(len, 0.0);
-    let mut out = forward.make_output_vec();
-    // Buffers sized by the plan itself: the transform cannot refuse them.
-    let done = forward.process(&mut x, &mut out);
-    debug_assert!(done.is_ok());
-    out
-}
-
-/// The forward real-input transform of `len` samples. Making it costs about as much as
-/// running it (its twiddle factors, a sine and cosine each: 0.37 s against 0.31–0.35 s at
-/// 2.9·10⁷ samples on the 2-vCPU build machine), so the callers here make it on a second core
-/// while they prepare the record ([`both`]), and share it between records of one length.
-pub(crate) fn forward_plan(len: usize) -> Arc<dyn RealToComplex<f64>> {
-    RealFftPlanner::<f64>::new().plan_fft_forward(len)
+/// The forward real-input transform of `len` samples ([`RealForward`]: in place for long
+/// records). Making `realfft`'s plan for a short record costs about as much as running it (its
+/// twiddle factors, a sine and cosine each), so the callers here make it on a second core while
+/// they prepare the record ([`both`]), and share it between records of one length; a transform
+/// in place makes its tables (about √L entries) at once.
+pub(crate) fn forward_plan(len: usize) -> RealForward {
+    RealForward::new(len)
 }
 
 /// The inverse real-input transform of `len` samples (made as [`forward_plan`]).
-pub(crate) fn inverse_plan(len: usize) -> Arc<dyn ComplexToReal<f64>> {
-    RealFftPlanner::<f64>::new().plan_fft_inverse(len)
-}
-
-/// The inverse real-input transform, unscaled, of the spectrum `bins` (0 … len/2) by `inverse`
-/// (a plan of the record's length), `bins` its scratch: the real record whose spectrum it is.
-/// The imaginary parts of bins 0 and len/2 (that of a real record is 0) are ignored.
-pub(crate) fn real_inverse(
-    inverse: &dyn ComplexToReal<f64>,
-    mut bins: Vec<Complex<f64>>,
-) -> Vec<f64> {
-    let mut out = inverse.make_output_vec();
-    let done = inverse.process(&mut bins, &mut out);
-    debug_assert!(matches!(done, Ok(()) | Err(FftError::InputValues(..))));
-    out
+pub(crate) fn inverse_plan(len: usize) -> RealInverse {
+    RealInverse::new(len)
 }
 
 /// The non-symmetric residual of `values` on `grid`.
@@ -312,7 +281,7 @@ pub fn amplitude_spectrum_and_band_on(
     }
     let len = fast_length(grid.len(), false);
     let (r, forward) = both(|| residual(grid, &grid.z_mm), || forward_plan(len));
-    let a = hann_amplitudes_by(&*forward, r);
+    let a = hann_amplitudes_by(&forward, r);
     drop(forward);
     spectrum_of(grid, &a, len, spindle_rpm, max_bins)
 }
@@ -344,10 +313,10 @@ pub fn amplitude_spectrum_and_bands_on(
         || forward_plan(len),
     );
     let (a, values_band) = both(
-        || heights.map(|r| hann_amplitudes_by(&*forward, r)),
+        || heights.map(|r| hann_amplitudes_by(&forward, r)),
         || {
             highest_significant_of(
-                &hann_amplitudes_by(&*forward, values),
+                &hann_amplitudes_by(&forward, values),
                 grid.samples_per_rev,
                 len,
             )
@@ -438,7 +407,7 @@ pub fn highest_significant_cycles_per_rev_beside(
     );
     let len = fast_length(r.len(), false);
     let a = if forward.len() == len {
-        hann_amplitudes_by(&*forward, r)
+        hann_amplitudes_by(&forward, r)
     } else {
         drop(forward);
         hann_amplitudes(r, len)
@@ -497,11 +466,7 @@ fn analytic_length(n: usize, taper: usize) -> usize {
 
 /// [`analytic_signal`] by the transform `forward` of its length ([`analytic_length`]), let go
 /// before the inverse transform is made.
-fn analytic_signal_by(
-    forward: Arc<dyn RealToComplex<f64>>,
-    x: Vec<f64>,
-    taper: usize,
-) -> (Vec<f64>, Vec<f64>) {
+fn analytic_signal_by(forward: RealForward, x: Vec<f64>, taper: usize) -> (Vec<f64>, Vec<f64>) {
     let n = x.len();
     let taper = taper.min(n / 2);
     let roll = |j: usize| {
@@ -520,7 +485,7 @@ fn analytic_signal_by(
         .for_each(|(j, v)| *v *= roll(j));
     let mut record = Vec::with_capacity(len);
     record.extend_from_slice(&rolled);
-    let mut bins = real_spectrum_by(&*forward, record);
+    let mut bins = forward.spectrum(record);
     drop(forward);
     let half = len / 2;
     for (j, c) in bins.iter_mut().enumerate() {
@@ -531,7 +496,7 @@ fn analytic_signal_by(
         };
     }
     let inverse = inverse_plan(len);
-    let mut hilbert = real_inverse(&*inverse, bins);
+    let mut hilbert = inverse.record(bins);
     hilbert.truncate(n);
     (rolled, hilbert)
 }
@@ -717,7 +682,7 @@ mod tests {
             (20, 24),
         ] {
             let x: Vec<f64> = (0..n).map(|j| ((j * j) as f64 * 0.7).sin() + 0.1).collect();
-            let bins = real_spectrum_by(&*forward_plan(len), x.clone());
+            let bins = forward_plan(len).spectrum(x.clone());
             assert_eq!(bins.len(), len / 2 + 1);
             for (k, b) in bins.iter().enumerate() {
                 let direct: Complex<f64> = (x.iter().enumerate())
@@ -725,8 +690,7 @@ mod tests {
                     .sum();
                 assert!((b - direct).norm() < 1e-13, "n {n}, len {len}, bin {k}");
             }
-            let inverse = inverse_plan(len);
-            let back = real_inverse(&*inverse, bins);
+            let back = inverse_plan(len).record(bins);
             for (j, v) in back.iter().enumerate() {
                 let want = x.get(j).copied().unwrap_or(0.0) * len as f64;
                 assert!((v - want).abs() < 1e-12, "n {n}, len {len}, sample {j}");

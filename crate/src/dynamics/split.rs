@@ -51,17 +51,15 @@
 use crate::dynamics::path_signal::{
     AngleExtremes, PathSignal, SignalError, UniformSignal, hz, omega, peak_to_valley,
 };
+use crate::dynamics::real_transform::RealInverse;
 use crate::dynamics::spectrum::{
     fast_length, forward_plan, highest_significant_cycles_per_rev_beside, inverse_plan,
-    real_inverse, real_spectrum_by,
 };
 use crate::field::{FieldError, positive};
 use crate::job::SplitSpec;
 use crate::parallel::both;
-use realfft::ComplexToReal;
 use rustfft::num_complex::Complex;
 use serde::{Deserialize, Serialize};
-use std::sync::Arc;
 use thiserror::Error;
 
 /// Order of the Butterworth response whose square is the low-pass ([`response`]).
@@ -230,7 +228,7 @@ struct LowPass {
     /// Bins 0 … len/2 of the extended signal's spectrum.
     spectrum: Vec<Complex<f64>>,
     /// The inverse transform, of the extended signal's length.
-    inverse: Arc<dyn ComplexToReal<f64>>,
+    inverse: RealInverse,
     samples: usize,
     samples_per_rev: usize,
 }
@@ -245,10 +243,7 @@ impl LowPass {
             || extend(grid, head, len - grid.len() - head),
             || forward_plan(len),
         );
-        let (spectrum, inverse) = both(
-            || real_spectrum_by(&*forward, extended),
-            || inverse_plan(len),
-        );
+        let (spectrum, inverse) = both(|| forward.spectrum(extended), || inverse_plan(len));
         Self {
             spectrum,
             inverse,
@@ -265,7 +260,7 @@ impl LowPass {
             .map(|(j, c)| c * response(j as f64 * cpr_per_bin, k_c) / len as f64)
             .collect();
         let skip = EXTENSION_REVS * self.samples_per_rev;
-        let mut out = real_inverse(&*self.inverse, bins);
+        let mut out = self.inverse.record(bins);
         out.truncate(skip + self.samples);
         out.drain(..skip);
         out

@@ -35,9 +35,9 @@ use crate::dynamics::fts_grid::{FtsGrid, FtsGridReport, ServoPath};
 use crate::dynamics::path_signal::{PathSignal, UniformSignal, extremes, hz, peak_to_valley};
 use crate::dynamics::spectrum::{
     BandFrequency, Spectrum, amplitude_spectrum_and_bands_on, highest_significant_cycles_per_rev,
-    highest_significant_cycles_per_rev_beside, instantaneous_frequency_on,
+    highest_significant_cycles_per_rev_beside, instantaneous_frequency_of,
 };
-use crate::dynamics::split::{Limit, SplitError, SplitLimits, Verdict, split_on};
+use crate::dynamics::split::{Limit, SplitError, SplitLimits, Verdict, servo_share, split_on};
 use crate::job::Job;
 use crate::job::MachineSpec;
 use crate::job::SplitSpec;
@@ -47,6 +47,7 @@ use crate::path::PathPoint;
 use crate::progress::{Progress, Stage};
 use crate::tool::ToolPath;
 use serde::Serialize;
+use std::cell::Cell;
 use std::ops::ControlFlow;
 use thiserror::Error;
 
@@ -497,26 +498,40 @@ impl Dynamics {
     fn of_signal(job: &Job, signal: &PathSignal) -> Result<Self, SplitError> {
         let machine = &job.machine;
         let rpm = machine.spindle_rpm;
-        // The path on its uniform grid, resampled once for every analysis below.
+        // The path on its uniform grid, resampled once for every analysis below. The grid's
+        // heights are handed to the first analysis that takes them and made again for the
+        // others ([`PathSignal::uniform_values`], to the bit), not held beside the transforms.
         let mut uniform = signal.uniform();
-        let instantaneous_frequency = uniform.as_ref().map_or_else(
-            |_| Vec::new(),
-            |g| instantaneous_frequency_on(g, rpm, FREQUENCY_BANDS),
-        );
-        // The spectrum with Z's highest significant frequency read off it (cycles a
-        // revolution), and X's bandwidth figure, which takes the grid's radii themselves
-        // (nothing after needs them): two transforms of one length on the two cores.
-        let (spectrum, z_band_cpr, x_needed_hz) = match uniform.as_mut() {
+        let held = Cell::new(uniform.as_mut().ok().map(|g| std::mem::take(&mut g.z_mm)));
+        let heights = || {
+            held.take()
+                .unwrap_or_else(|| signal.uniform_values(&signal.z_mm))
+        };
+        // The instantaneous frequency takes the grid's radii (each pair's band read off them);
+        // X's bandwidth figure has them made again.
+        let instantaneous_frequency = match uniform.as_mut() {
             Ok(g) => {
-                let rho = std::mem::take(&mut g.rho_mm);
+                let radii = std::mem::take(&mut g.rho_mm);
+                instantaneous_frequency_of(g, &heights, radii, rpm, FREQUENCY_BANDS)
+            }
+            Err(_) => Vec::new(),
+        };
+        // The spectrum with Z's highest significant frequency read off it (cycles a
+        // revolution), and X's bandwidth figure of the grid's radii: two transforms of one
+        // length on the two cores.
+        let (spectrum, z_band_cpr, x_needed_hz) = match uniform.as_ref() {
+            Ok(g) => {
+                let (heights, radii) = (heights(), signal.uniform_radii());
                 let (s, z_band, x_band) =
-                    amplitude_spectrum_and_bands_on(g, rho, rpm, SPECTRUM_BINS);
+                    amplitude_spectrum_and_bands_on(g, heights, radii, rpm, SPECTRUM_BINS);
                 (s, z_band, Some(hz(x_band, rpm)))
             }
             Err(_) => (Spectrum::default(), None, None),
         };
-        let (split_report, z_slide, w_fts) = match &job.strategy.split {
-            None => (None, None, None),
+        // The servo's share is let go once its figures are in the report, and made again at
+        // the end ([`servo_share`], to the bit): it is not held beside Z's figure.
+        let (split_report, z_slide) = match &job.strategy.split {
+            None => (None, None),
             Some(spec) => {
                 let limits = split_limits(machine);
                 let s = split_on(signal, &uniform, z_band_cpr, spec, rpm, limits.as_ref())?;
@@ -527,13 +542,13 @@ impl Dynamics {
                     w_fts_pv_um: pv_um(&s.w_fts_mm),
                     verdict: s.verdict,
                 };
-                (Some(report), Some(s.z_slide_mm), Some(s.w_fts_mm))
+                (Some(report), Some(s.z_slide_mm))
             }
         };
         // A split path's Z figure takes the slide's share resampled on the grid: the grid's own
-        // heights are let go first (8 bytes a sample where the dynamics hold the most).
+        // heights are let go first.
         let grid_samples = uniform.as_ref().map_or(0, UniformSignal::len);
-        if let (Some(_), Ok(g)) = (&z_slide, uniform.as_mut()) {
+        if let Ok(g) = uniform.as_mut() {
             g.z_mm = Vec::new();
         }
         let grid = uniform.as_ref().ok();
@@ -554,7 +569,10 @@ impl Dynamics {
                             })
                         }
                         None => z_band_cpr.unwrap_or_else(|| {
-                            highest_significant_cycles_per_rev(g, g.z_mm.clone())
+                            highest_significant_cycles_per_rev(
+                                g,
+                                signal.uniform_values(&signal.z_mm),
+                            )
                         }),
                     };
                     hz(cpr, rpm)
@@ -565,6 +583,7 @@ impl Dynamics {
             x: BandwidthCheck::of(x_needed_hz, machine.x_slide.map(|s| s.bandwidth_hz)),
             z: BandwidthCheck::of(z_needed_hz, machine.z_slide.map(|s| s.bandwidth_hz)),
         };
+        let w_fts = z_slide.as_ref().map(|z| servo_share(&signal.z_mm, z));
         let channels = match (&z_slide, &w_fts) {
             (Some(z), Some(w)) => Some(ChannelProfile::of(|i| signal.rho(i), z, w)),
             _ => None,

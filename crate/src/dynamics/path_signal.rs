@@ -376,11 +376,22 @@ impl PathSignal {
     pub fn uniform(&self) -> Result<UniformSignal, SignalError> {
         self.check()?;
         let m = self.samples_per_rev();
+        let z_mm = self.resample(|i| self.z_mm[i], m);
         Ok(UniformSignal {
             samples_per_rev: m,
-            z_mm: self.resample(|i| self.z_mm[i], m),
+            samples: z_mm.len(),
+            z_mm,
             rho_mm: self.resample(|i| self.rho(i), m),
         })
+    }
+
+    /// The radii on the grid of [`Self::uniform`], the same to the bit; empty when the path
+    /// cannot be resampled.
+    pub fn uniform_radii(&self) -> Vec<f64> {
+        if self.check().is_err() {
+            return Vec::new();
+        }
+        self.resample(|i| self.rho(i), self.samples_per_rev())
     }
 
     /// `values` (one per point) on the grid of [`Self::uniform`]; empty when the path cannot be
@@ -503,21 +514,35 @@ pub fn hz(cycles_per_rev: f64, spindle_rpm: f64) -> f64 {
 pub struct UniformSignal {
     /// Samples per revolution M.
     pub samples_per_rev: usize,
-    /// Z at the samples, mm.
+    /// Number of samples, whether or not the columns below are held.
+    samples: usize,
+    /// Z at the samples, mm (the dynamics let it go where they can make it again:
+    /// [`PathSignal::uniform_values`] of the path's heights).
     pub z_mm: Vec<f64>,
-    /// Radius at the samples, mm.
+    /// Radius at the samples, mm (the dynamics hand it to X's bandwidth figure).
     pub rho_mm: Vec<f64>,
 }
 
 impl UniformSignal {
     /// Number of samples.
     pub fn len(&self) -> usize {
-        self.z_mm.len()
+        self.samples
     }
 
     /// Whether there are no samples.
     pub fn is_empty(&self) -> bool {
-        self.z_mm.is_empty()
+        self.samples == 0
+    }
+
+    /// The heights at the samples: [`Self::z_mm`], or where they were let go (left empty) made
+    /// again from `signal`, the path this grid was made from ([`PathSignal::uniform_values`]:
+    /// the same values to the bit).
+    pub fn heights(&self, signal: &PathSignal) -> Cow<'_, [f64]> {
+        if self.z_mm.len() == self.samples {
+            Cow::Borrowed(&self.z_mm)
+        } else {
+            Cow::Owned(signal.uniform_values(&signal.z_mm))
+        }
     }
 
     /// Angle step, radians.
@@ -531,57 +556,96 @@ impl UniformSignal {
         if n < 2 * m - 1 {
             return least_squares_line(values);
         }
-        let base = values[0];
-        // One-revolution moving sums B_i (of samples i … i + M − 1), then their moving sums
-        // (B_k … B_{k+M−1}): the triangle of half-width M around sample k + M − 1, by running
-        // sums (rounding grows like √n·ε, not n²·ε as with prefix sums of prefix sums). Each
-        // B_i leaves the second sum M after it entered, so one revolution of them is kept, in
-        // a ring (slot i mod M), not the whole record.
-        let mut ring = Vec::with_capacity(m);
-        let mut sum: f64 = values[..m].iter().map(|v| v - base).sum();
-        ring.push(sum);
-        for j in m..2 * m - 1 {
-            sum += values[j] - values[j - m];
-            ring.push(sum);
-        }
         let mut out = vec![0.0; n];
-        let mut sum2: f64 = ring.iter().sum();
-        let norm = (m * m) as f64;
-        out[m - 1] = base + sum2 / norm;
-        for k in 1..=n + 1 - 2 * m {
-            // B_{k+M−1} in, B_{k−1} out.
-            let j = k + 2 * m - 2;
-            sum += values[j] - values[j - m];
-            let slot = (k - 1) % m;
-            sum2 += sum - ring[slot];
-            ring[slot] = sum;
-            out[k + m - 1] = base + sum2 / norm;
-        }
-        // The ends: the polynomial through the means at up to three centres one revolution
-        // apart, nearest first.
-        let (first, last) = (m - 1, n - m);
-        let centres = |from: usize, towards_end: bool| -> Vec<(f64, f64)> {
-            (0..3)
-                .map(|i| {
-                    if towards_end {
-                        from as isize + (i * m) as isize
-                    } else {
-                        from as isize - (i * m) as isize
-                    }
-                })
-                .filter(|&c| c >= first as isize && c <= last as isize)
-                .map(|c| (c as f64, out[c as usize]))
-                .collect()
-        };
-        let head = centres(first, true);
-        let tail = centres(last, false);
-        for (j, v) in out.iter_mut().enumerate().take(first) {
-            *v = lagrange(&head, j as f64);
-        }
-        for (j, v) in out.iter_mut().enumerate().skip(last + 1) {
-            *v = lagrange(&tail, j as f64);
+        let mut ends = EndMeans::new(n, m);
+        triangle_means(
+            n,
+            m,
+            |j| values[j],
+            |c, mean| {
+                out[c] = mean;
+                ends.offer(c, mean);
+            },
+        );
+        let at = ends.extrapolation();
+        for (j, v) in out.iter_mut().enumerate() {
+            if let Some(e) = at(j) {
+                *v = e;
+            }
         }
         out
+    }
+
+    /// The first and the last `count` values of [`Self::symmetric_part`] of `values`, to the
+    /// bit, without the part between them.
+    pub fn symmetric_part_at_ends(&self, values: &[f64], count: usize) -> (Vec<f64>, Vec<f64>) {
+        let (n, m) = (values.len(), self.samples_per_rev);
+        let count = count.min(n);
+        if n < 2 * m - 1 {
+            let line = least_squares_line(values);
+            return (line[..count].to_vec(), line[n - count..].to_vec());
+        }
+        let (mut head, mut tail) = (vec![0.0; count], vec![0.0; count]);
+        let mut ends = EndMeans::new(n, m);
+        triangle_means(
+            n,
+            m,
+            |j| values[j],
+            |c, mean| {
+                if c < count {
+                    head[c] = mean;
+                }
+                if c + count >= n {
+                    tail[c + count - n] = mean;
+                }
+                ends.offer(c, mean);
+            },
+        );
+        let at = ends.extrapolation();
+        let samples = (0..count).chain(n - count..n);
+        for (j, v) in samples.zip(head.iter_mut().chain(tail.iter_mut())) {
+            if let Some(e) = at(j) {
+                *v = e;
+            }
+        }
+        (head, tail)
+    }
+
+    /// `values` less their [`Self::symmetric_part`], in their place, to the bit: each mean is
+    /// subtracted once the running sums have read its sample, and the ends (polynomials through
+    /// three means each) last, so the record is never held twice.
+    pub fn subtract_symmetric_part(&self, values: &mut [f64]) {
+        let (n, m) = (values.len(), self.samples_per_rev);
+        if n < 2 * m - 1 {
+            let line = least_squares_line(values);
+            values.iter_mut().zip(&line).for_each(|(v, s)| *v -= s);
+            return;
+        }
+        let mut ends = EndMeans::new(n, m);
+        let cells = std::cell::Cell::from_mut(values).as_slice_of_cells();
+        // The mean at `c − 1` is subtracted when that at `c` is handed over: the sums have
+        // read that sample for the last time then.
+        let mut pending: Option<(usize, f64)> = None;
+        triangle_means(
+            n,
+            m,
+            |j| cells[j].get(),
+            |c, mean| {
+                ends.offer(c, mean);
+                if let Some((p, s)) = pending.replace((c, mean)) {
+                    cells[p].set(cells[p].get() - s);
+                }
+            },
+        );
+        if let Some((p, s)) = pending {
+            cells[p].set(cells[p].get() - s);
+        }
+        let at = ends.extrapolation();
+        for (j, v) in values.iter_mut().enumerate() {
+            if let Some(e) = at(j) {
+                *v -= e;
+            }
+        }
     }
 
     /// `values` on the grid, linearly interpolated at the path's angles (the last grid interval
@@ -604,6 +668,98 @@ impl UniformSignal {
         let j = (x.floor().max(0.0) as usize).min(n - 2);
         let t = x - j as f64;
         values[j] + t * (values[j + 1] - values[j])
+    }
+}
+
+/// The two-revolution triangle means of the `n` samples `value(j)` (`m` a revolution, n ≥
+/// 2m − 1) at the centres m − 1 … n − m, handed to `each(centre, mean)` in order. One-revolution
+/// moving sums B_i (of samples i … i + M − 1), then their moving sums (B_k … B_{k+M−1}): the
+/// triangle of half-width M around sample k + M − 1, by running sums (rounding grows like
+/// √n·ε, not n²·ε as with prefix sums of prefix sums). Each B_i leaves the second sum M after
+/// it entered, so one revolution of them is kept, in a ring (slot i mod M), not the whole
+/// record. When the mean at a centre c is handed over, no later one reads a sample before c.
+fn triangle_means(
+    n: usize,
+    m: usize,
+    value: impl Fn(usize) -> f64,
+    mut each: impl FnMut(usize, f64),
+) {
+    let base = value(0);
+    let mut ring = Vec::with_capacity(m);
+    let mut sum: f64 = (0..m).map(|j| value(j) - base).sum();
+    ring.push(sum);
+    for j in m..2 * m - 1 {
+        sum += value(j) - value(j - m);
+        ring.push(sum);
+    }
+    let mut sum2: f64 = ring.iter().sum();
+    let norm = (m * m) as f64;
+    each(m - 1, base + sum2 / norm);
+    for k in 1..=n + 1 - 2 * m {
+        // B_{k+M−1} in, B_{k−1} out.
+        let j = k + 2 * m - 2;
+        sum += value(j) - value(j - m);
+        let slot = (k - 1) % m;
+        sum2 += sum - ring[slot];
+        ring[slot] = sum;
+        each(k + m - 1, base + sum2 / norm);
+    }
+}
+
+/// The symmetric part's means at the centres its ends are extrapolated from, kept as
+/// [`triangle_means`] hands them over (`n` samples, `m` a revolution): up to three one
+/// revolution apart from the first centre m − 1 on, and from the last n − m back.
+struct EndMeans {
+    n: usize,
+    m: usize,
+    kept: Vec<(usize, f64)>,
+}
+
+impl EndMeans {
+    fn new(n: usize, m: usize) -> Self {
+        Self {
+            n,
+            m,
+            kept: Vec::with_capacity(6),
+        }
+    }
+
+    /// Keeps the mean at centre `c` if an end is extrapolated from it.
+    fn offer(&mut self, c: usize, mean: f64) {
+        let (m, first, last) = (self.m, self.m - 1, self.n - self.m);
+        if (0..3).any(|i| c == first + i * m || c + i * m == last) {
+            self.kept.push((c, mean));
+        }
+    }
+
+    /// The symmetric part at sample j before the first centre or after the last (the
+    /// polynomial through the means at the three centres nearest that end), `None` between.
+    fn extrapolation(&self) -> impl Fn(usize) -> Option<f64> + '_ {
+        let (m, first, last) = (self.m, self.m - 1, self.n - self.m);
+        let mean = |c: usize| self.kept.iter().find(|k| k.0 == c).map_or(0.0, |k| k.1);
+        let centres = |from: usize, towards_end: bool| -> Vec<(f64, f64)> {
+            (0..3)
+                .map(|i| {
+                    if towards_end {
+                        from as isize + (i * m) as isize
+                    } else {
+                        from as isize - (i * m) as isize
+                    }
+                })
+                .filter(|&c| c >= first as isize && c <= last as isize)
+                .map(|c| (c as f64, mean(c as usize)))
+                .collect()
+        };
+        let (head, tail) = (centres(first, true), centres(last, false));
+        move |j| {
+            if j < first {
+                Some(lagrange(&head, j as f64))
+            } else if j > last {
+                Some(lagrange(&tail, j as f64))
+            } else {
+                None
+            }
+        }
     }
 }
 
@@ -809,6 +965,7 @@ pub(crate) mod tests {
         for m in [1, 2, 3, 8, 13] {
             let grid = UniformSignal {
                 samples_per_rev: m,
+                samples: 0,
                 z_mm: Vec::new(),
                 rho_mm: Vec::new(),
             };
@@ -825,7 +982,45 @@ pub(crate) mod tests {
                         "M {m}, n {n}, sample {j}"
                     );
                 }
+                // Subtracted in place, ends and all: the residual of the part, to the bit.
+                let mut residual = values.clone();
+                grid.subtract_symmetric_part(&mut residual);
+                for j in 0..n {
+                    assert_eq!(
+                        residual[j].to_bits(),
+                        (values[j] - ours[j]).to_bits(),
+                        "in place: M {m}, n {n}, sample {j}"
+                    );
+                }
+                // Its ends alone, as long as a revolution and as long as the record.
+                for count in [m + 1, n] {
+                    let (head, tail) = grid.symmetric_part_at_ends(&values, count);
+                    let count = count.min(n);
+                    for k in 0..count {
+                        assert_eq!(
+                            head[k].to_bits(),
+                            ours[k].to_bits(),
+                            "head: M {m}, n {n}, {k}"
+                        );
+                        let j = n - count + k;
+                        assert_eq!(
+                            tail[k].to_bits(),
+                            ours[j].to_bits(),
+                            "tail: M {m}, n {n}, {j}"
+                        );
+                    }
+                }
             }
+            // Shorter than two revolutions: less the least-squares line, in place alike.
+            let short: Vec<f64> = (0..m.max(2)).map(|j| (j * j) as f64).collect();
+            let mut residual = short.clone();
+            grid.subtract_symmetric_part(&mut residual);
+            let line = grid.symmetric_part(&short);
+            for j in 0..short.len() {
+                assert_eq!(residual[j].to_bits(), (short[j] - line[j]).to_bits());
+            }
+            let (head, tail) = grid.symmetric_part_at_ends(&short, 1);
+            assert_eq!([head[0], tail[0]], [line[0], line[short.len() - 1]]);
         }
     }
 

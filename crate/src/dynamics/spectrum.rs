@@ -65,7 +65,7 @@
 //! to the bit).
 
 use crate::dynamics::path_signal::{PathSignal, UniformSignal, hz, residual_gain};
-use crate::dynamics::real_transform::{RealForward, RealInverse};
+use crate::dynamics::real_transform::{RealForward, RealInverse, real_values_of};
 use crate::parallel::{both, fill_each};
 use rustfft::num_complex::Complex;
 use serde::Serialize;
@@ -153,12 +153,9 @@ fn hann_amplitudes_by(forward: &RealForward, mut x: Vec<f64>) -> Vec<f64> {
         gain += w;
         *v *= w;
     }
-    forward
-        .spectrum(x)
-        .iter()
-        .enumerate()
-        .map(|(j, c)| c.norm() * if j == 0 { 1.0 } else { 2.0 } / gain)
-        .collect()
+    real_values_of(forward.spectrum(x), |j, c| {
+        c.norm() * if j == 0 { 1.0 } else { 2.0 } / gain
+    })
 }
 
 /// The forward real-input transform of `len` samples ([`RealForward`]: in place for long
@@ -175,15 +172,9 @@ pub(crate) fn inverse_plan(len: usize) -> RealInverse {
     RealInverse::new(len)
 }
 
-/// The non-symmetric residual of `values` on `grid`.
-fn residual(grid: &UniformSignal, values: &[f64]) -> Vec<f64> {
-    residual_of(grid, values.to_vec())
-}
-
-/// [`residual`] of `values` held by the caller, computed in their place.
+/// The non-symmetric residual of `values` (one a sample of `grid`), computed in their place.
 fn residual_of(grid: &UniformSignal, mut values: Vec<f64>) -> Vec<f64> {
-    let sym = grid.symmetric_part(&values);
-    values.iter_mut().zip(&sym).for_each(|(v, s)| *v -= s);
+    grid.subtract_symmetric_part(&mut values);
     values
 }
 
@@ -276,29 +267,42 @@ pub fn amplitude_spectrum_and_band_on(
     spindle_rpm: f64,
     max_bins: usize,
 ) -> (Spectrum, Option<f64>) {
+    amplitude_spectrum_of(grid, grid.z_mm.clone(), spindle_rpm, max_bins)
+}
+
+/// [`amplitude_spectrum_and_band_on`] of the grid's heights `heights` (as `grid.z_mm`), handed
+/// over: the transform takes their memory.
+fn amplitude_spectrum_of(
+    grid: &UniformSignal,
+    heights: Vec<f64>,
+    spindle_rpm: f64,
+    max_bins: usize,
+) -> (Spectrum, Option<f64>) {
     if !positive_speed(spindle_rpm) {
         return (Spectrum::default(), None);
     }
     let len = fast_length(grid.len(), false);
-    let (r, forward) = both(|| residual(grid, &grid.z_mm), || forward_plan(len));
+    let (r, forward) = both(|| residual_of(grid, heights), || forward_plan(len));
     let a = hann_amplitudes_by(&forward, r);
     drop(forward);
     spectrum_of(grid, &a, len, spindle_rpm, max_bins)
 }
 
-/// [`amplitude_spectrum_and_band_on`], and [`highest_significant_cycles_per_rev`] of `values`
-/// (one a grid sample, handed over), each to the bit: the two records prepared one after the
-/// other while the transform of their common length is made on a second core, then
-/// transformed on two cores by that one transform.
+/// [`amplitude_spectrum_and_band_on`] of the grid's heights `heights` (as `grid.z_mm`), and
+/// [`highest_significant_cycles_per_rev`] of `values` (one a grid sample), each to the bit,
+/// both handed over: the two records prepared one after the other (each in its own memory)
+/// while the transform of their common length is made on a second core, then transformed on
+/// two cores by that one transform.
 pub fn amplitude_spectrum_and_bands_on(
     grid: &UniformSignal,
+    heights: Vec<f64>,
     values: Vec<f64>,
     spindle_rpm: f64,
     max_bins: usize,
 ) -> (Spectrum, Option<f64>, f64) {
     let len = fast_length(grid.len(), false);
-    if values.len() != grid.len() {
-        let (spectrum, band) = amplitude_spectrum_and_band_on(grid, spindle_rpm, max_bins);
+    if values.len() != grid.len() || heights.len() != grid.len() {
+        let (spectrum, band) = amplitude_spectrum_of(grid, heights, spindle_rpm, max_bins);
         return (
             spectrum,
             band,
@@ -307,7 +311,7 @@ pub fn amplitude_spectrum_and_bands_on(
     }
     let ((heights, values), forward) = both(
         || {
-            let heights = positive_speed(spindle_rpm).then(|| residual(grid, &grid.z_mm));
+            let heights = positive_speed(spindle_rpm).then(|| residual_of(grid, heights));
             (heights, residual_of(grid, values))
         },
         || forward_plan(len),
@@ -449,9 +453,11 @@ pub fn fast_length(n: usize, even: bool) -> usize {
 /// Nyquist bins removed; by real-input transforms), the first and last `taper` samples rolled off
 /// by a raised cosine and the record padded with [`PAD_TAPERS`] times as many zeros or more
 /// (with as many as it has samples if `taper` is 0), to a [`fast_length`] (module docs).
-pub fn analytic_signal(x: Vec<f64>, taper: usize) -> (Vec<f64>, Vec<f64>) {
+pub fn analytic_signal(mut x: Vec<f64>, taper: usize) -> (Vec<f64>, Vec<f64>) {
     let forward = forward_plan(analytic_length(x.len(), taper));
-    analytic_signal_by(forward, x, taper)
+    roll_off(&mut x, taper);
+    let hilbert = hilbert_by(forward, x.clone());
+    (x, hilbert)
 }
 
 /// The length of the transforms of [`analytic_signal`] for `n` samples rolled off over `taper`.
@@ -464,28 +470,24 @@ fn analytic_length(n: usize, taper: usize) -> usize {
     }
 }
 
-/// [`analytic_signal`] by the transform `forward` of its length ([`analytic_length`]), let go
-/// before the inverse transform is made.
-fn analytic_signal_by(forward: RealForward, x: Vec<f64>, taper: usize) -> (Vec<f64>, Vec<f64>) {
+/// The first and last `taper` samples of `x` rolled off by a raised cosine, in place.
+fn roll_off(x: &mut [f64], taper: usize) {
     let n = x.len();
     let taper = taper.min(n / 2);
-    let roll = |j: usize| {
+    for (j, v) in x.iter_mut().enumerate() {
         let d = j.min(n - 1 - j);
         if d < taper {
-            0.5 - 0.5 * (std::f64::consts::PI * (d as f64 + 0.5) / taper as f64).cos()
-        } else {
-            1.0
+            *v *= 0.5 - 0.5 * (std::f64::consts::PI * (d as f64 + 0.5) / taper as f64).cos();
         }
-    };
-    let len = forward.len();
-    let mut rolled = x;
-    rolled
-        .iter_mut()
-        .enumerate()
-        .for_each(|(j, v)| *v *= roll(j));
-    let mut record = Vec::with_capacity(len);
-    record.extend_from_slice(&rolled);
-    let mut bins = forward.spectrum(record);
+    }
+}
+
+/// The Hilbert transform of the rolled-off record `rolled` by the transform `forward` of its
+/// padded length ([`analytic_length`]), in the record's memory; `forward` is let go before the
+/// inverse transform is made.
+fn hilbert_by(forward: RealForward, rolled: Vec<f64>) -> Vec<f64> {
+    let (n, len) = (rolled.len(), forward.len());
+    let mut bins = forward.spectrum(rolled);
     drop(forward);
     let half = len / 2;
     for (j, c) in bins.iter_mut().enumerate() {
@@ -495,10 +497,9 @@ fn analytic_signal_by(forward: RealForward, x: Vec<f64>, taper: usize) -> (Vec<f
             Complex::new(c.im, -c.re) / len as f64
         };
     }
-    let inverse = inverse_plan(len);
-    let mut hilbert = inverse.record(bins);
+    let mut hilbert = inverse_plan(len).record(bins);
     hilbert.truncate(n);
-    (rolled, hilbert)
+    hilbert
 }
 
 /// The instantaneous frequency of the path's non-symmetric part at `spindle_rpm` in `bands`
@@ -521,7 +522,24 @@ pub fn instantaneous_frequency_on(
     spindle_rpm: f64,
     bands: usize,
 ) -> Vec<BandFrequency> {
-    if !positive_speed(spindle_rpm) || bands == 0 {
+    let radii = grid.rho_mm.clone();
+    instantaneous_frequency_of(grid, &|| grid.z_mm.clone(), radii, spindle_rpm, bands)
+}
+
+/// [`instantaneous_frequency_on`] of the grid's heights as `heights` makes them (the same each
+/// call) and its radii `radii`, handed over (at most 65 536 bands). The radii give each pair of
+/// samples its band (2 bytes a pair) and are let go; the heights are made twice, for the
+/// Hilbert transform (in the record's memory) and for the analytic signal's real part beside
+/// it, rather than held throughout (the dynamics' peak memory).
+pub(crate) fn instantaneous_frequency_of(
+    grid: &UniformSignal,
+    heights: &dyn Fn() -> Vec<f64>,
+    radii: Vec<f64>,
+    spindle_rpm: f64,
+    bands: usize,
+) -> Vec<BandFrequency> {
+    let bands = bands.min(1 << 16);
+    if !positive_speed(spindle_rpm) || bands == 0 || radii.len() != grid.len() {
         return Vec::new();
     }
     let skip = if grid.len() >= 3 * grid.samples_per_rev {
@@ -529,21 +547,31 @@ pub fn instantaneous_frequency_on(
     } else {
         0
     };
+    let rho_max = radii.iter().copied().fold(0.0, f64::max);
+    let width = rho_max / bands as f64;
+    // The band of each pair of samples j, j + 1.
+    let band: Vec<u16> = (radii.windows(2))
+        .map(|r| {
+            let rho = 0.5 * (r[0] + r[1]);
+            if width > 0.0 {
+                (((rho_max - rho) / width).floor().max(0.0) as usize).min(bands - 1) as u16
+            } else {
+                0
+            }
+        })
+        .collect();
+    drop(radii);
+    let band_of = |j: usize| band[j] as usize;
+    let rolled = || {
+        let mut r = residual_of(grid, heights());
+        roll_off(&mut r, skip);
+        r
+    };
     // The residual taken while the forward transform is made on a second core.
     let len = analytic_length(grid.len(), skip);
-    let (r, forward) = both(|| residual(grid, &grid.z_mm), || forward_plan(len));
-    let (re, im) = analytic_signal_by(forward, r, skip);
-    let rho_max = grid.rho_mm.iter().copied().fold(0.0, f64::max);
-    let width = rho_max / bands as f64;
-    // The band of the pair of samples j, j + 1.
-    let band_of = |j: usize| {
-        let rho = 0.5 * (grid.rho_mm[j] + grid.rho_mm[j + 1]);
-        if width > 0.0 {
-            (((rho_max - rho) / width).floor().max(0.0) as usize).min(bands - 1)
-        } else {
-            0
-        }
-    };
+    let (r, forward) = both(rolled, || forward_plan(len));
+    let im = hilbert_by(forward, r);
+    let re = rolled();
     let pairs = skip..re.len().saturating_sub(1 + skip);
     // Each band's first and last pair: a spiral meets the bands in turn, so each band's pairs
     // are gathered from its own stretch of the record, one band at a time.
@@ -644,7 +672,8 @@ mod tests {
             // The same with the radii's figure beside it, by one shared transform on two
             // cores, and each figure with its transform made beside its record: to the bit.
             let radii = highest_significant_cycles_per_rev(&g, g.rho_mm.clone());
-            let both = amplitude_spectrum_and_bands_on(&g, g.rho_mm.clone(), 600.0, 256);
+            let both =
+                amplitude_spectrum_and_bands_on(&g, g.z_mm.clone(), g.rho_mm.clone(), 600.0, 256);
             assert_eq!(both.0, spectrum);
             assert_eq!(both.1.map(f64::to_bits), band.map(f64::to_bits));
             assert_eq!(both.2.to_bits(), radii.to_bits());
@@ -661,7 +690,7 @@ mod tests {
         assert_eq!(amplitude_spectrum_and_band_on(&g, 0.0, 256).1, None);
         // Without a speed there is no spectrum, but the other figure still is.
         let (none, no_band, radii) =
-            amplitude_spectrum_and_bands_on(&g, g.rho_mm.clone(), 0.0, 256);
+            amplitude_spectrum_and_bands_on(&g, g.z_mm.clone(), g.rho_mm.clone(), 0.0, 256);
         assert_eq!((none, no_band), (Spectrum::default(), None));
         let own = highest_significant_cycles_per_rev(&g, g.rho_mm.clone());
         assert_eq!(radii.to_bits(), own.to_bits());

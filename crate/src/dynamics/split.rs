@@ -60,6 +60,7 @@ use crate::job::SplitSpec;
 use crate::parallel::both;
 use rustfft::num_complex::Complex;
 use serde::{Deserialize, Serialize};
+use std::borrow::Cow;
 use thiserror::Error;
 
 /// Order of the Butterworth response whose square is the low-pass ([`response`]).
@@ -217,6 +218,11 @@ pub enum SplitError {
     Signal(#[from] SignalError),
 }
 
+/// The servo's share W = z − Z of the path's heights `z` with the slide's `slide`, mm.
+pub fn servo_share(z: &[f64], slide: &[f64]) -> Vec<f64> {
+    z.iter().zip(slide).map(|(a, b)| a - b).collect()
+}
+
 /// The low-pass response at frequency `k` for cutoff `k_c` (any one unit).
 pub fn response(k: f64, k_c: f64) -> f64 {
     1.0 / (1.0 + (k / k_c).abs().powi(2 * BUTTERWORTH_ORDER))
@@ -234,13 +240,14 @@ struct LowPass {
 }
 
 impl LowPass {
-    fn new(grid: &UniformSignal) -> Self {
+    /// The filter of `heights`, one a sample of `grid`.
+    fn new(grid: &UniformSignal, heights: &[f64]) -> Self {
         let head = EXTENSION_REVS * grid.samples_per_rev;
         let len = fast_length(grid.len() + 2 * head, false);
         // The record extended while its transform is made on a second core, then transformed
         // while the inverse is made there.
         let (extended, forward) = both(
-            || extend(grid, head, len - grid.len() - head),
+            || extend(grid, heights, head, len - grid.len() - head),
             || forward_plan(len),
         );
         let (spectrum, inverse) = both(|| forward.spectrum(extended), || inverse_plan(len));
@@ -267,28 +274,29 @@ impl LowPass {
     }
 }
 
-/// The grid signal with `e` samples added before and `tail` after: the first (last) revolution
-/// of the non-symmetric residual repeated, on the symmetric part continued along its tangent
-/// over one revolution (module docs).
-fn extend(grid: &UniformSignal, e: usize, tail: usize) -> Vec<f64> {
-    let (x, m) = (&grid.z_mm, grid.samples_per_rev);
-    let n = x.len();
-    let sym = grid.symmetric_part(x);
+/// The grid signal `x` with `e` samples added before and `tail` after: the first (last)
+/// revolution of the non-symmetric residual repeated, on the symmetric part continued along
+/// its tangent over one revolution (module docs). Only the symmetric part's first and last
+/// revolution are made.
+fn extend(grid: &UniformSignal, x: &[f64], e: usize, tail: usize) -> Vec<f64> {
+    let (n, m) = (x.len(), grid.samples_per_rev);
     let rev = m.min(n - 1).max(1);
+    // The symmetric part at samples 0 … rev and n − 1 − rev … n − 1.
+    let (head_sym, tail_sym) = grid.symmetric_part_at_ends(x, rev + 1);
+    let sym_end = |j: usize| tail_sym[j + rev + 1 - n];
     let (slope_head, slope_tail) = (
-        (sym[rev] - sym[0]) / rev as f64,
-        (sym[n - 1] - sym[n - 1 - rev]) / rev as f64,
+        (head_sym[rev] - head_sym[0]) / rev as f64,
+        (sym_end(n - 1) - sym_end(n - 1 - rev)) / rev as f64,
     );
-    let residual = |j: usize| x[j] - sym[j];
     let head = (0..e).map(|i| {
         // Sample −(e − i): the residual one (or more) whole revolutions in.
         let back = e - i;
         let j = (rev - back % rev) % rev;
-        residual(j) + sym[0] - slope_head * back as f64
+        x[j] - head_sym[j] + head_sym[0] - slope_head * back as f64
     });
     let tail = (1..=tail).map(|ahead| {
         let j = n - 1 - (rev - ahead % rev) % rev;
-        residual(j) + sym[n - 1] + slope_tail * ahead as f64
+        x[j] - sym_end(j) + sym_end(n - 1) + slope_tail * ahead as f64
     });
     head.chain(x.iter().copied()).chain(tail).collect()
 }
@@ -330,7 +338,8 @@ pub fn split_on(
     };
     match spec {
         SplitSpec::Symmetric => {
-            Ok(ctx.finish(&grid.symmetric_part(&grid.z_mm), None, limits, None))
+            let symmetric = grid.symmetric_part(&ctx.heights());
+            Ok(ctx.finish(symmetric, None, limits, None))
         }
         SplitSpec::LowPass { cutoff_hz } => {
             let nyquist = hz(grid.samples_per_rev as f64 / 2.0, spindle_rpm);
@@ -346,8 +355,8 @@ pub fn split_on(
             }
             let k_c = cutoff_hz * 60.0 / spindle_rpm;
             // The filter is let go before the checks' own transforms.
-            let z_grid = LowPass::new(grid).apply(k_c);
-            Ok(ctx.finish(&z_grid, Some(k_c), limits, None))
+            let z_grid = LowPass::new(grid, &ctx.heights()).apply(k_c);
+            Ok(ctx.finish(z_grid, Some(k_c), limits, None))
         }
         SplitSpec::Auto => {
             let Some(limits) = limits else {
@@ -395,25 +404,32 @@ struct Context<'a> {
 }
 
 impl Context<'_> {
+    /// The grid's heights: its own, or made again from the path's where the dynamics let them
+    /// go ([`UniformSignal::heights`]).
+    fn heights(&self) -> Cow<'_, [f64]> {
+        self.grid.heights(self.signal)
+    }
+
     /// The split with slide channel `z_grid` on the grid: Z at the points by interpolation,
     /// W = z − Z, and the verdict against `limits` (`other_rpm` a feasible speed found for
     /// another split). The channels' spectra come first, before the channels at the points
-    /// are held beside their transforms.
+    /// are held beside their transforms; `z_grid` is let go once Z is at the points.
     fn finish(
         &self,
-        z_grid: &[f64],
+        z_grid: Vec<f64>,
         cutoff_cpr: Option<f64>,
         limits: Option<&SplitLimits>,
         other_rpm: Option<f64>,
     ) -> Split {
         let s = self.signal;
-        let slide_at = |i: usize| self.grid.interpolate(z_grid, s.angle(i));
+        let slide_at = |i: usize| self.grid.interpolate(&z_grid, s.angle(i));
         let bandwidths = limits.map(|_| {
             let w_is_zero = (0..s.len()).all(|i| s.z_mm[i] - slide_at(i) == 0.0);
-            self.bandwidths(z_grid, cutoff_cpr, w_is_zero)
+            self.bandwidths(&z_grid, cutoff_cpr, w_is_zero)
         });
         let z: Vec<f64> = (0..s.len()).map(slide_at).collect();
-        let w: Vec<f64> = s.z_mm.iter().zip(&z).map(|(a, b)| a - b).collect();
+        drop(z_grid);
+        let w = servo_share(&s.z_mm, &z);
         let verdict = match (limits, bandwidths) {
             (Some(l), Some(b)) => verdict(self.checks(&z, &w, b, l), self.rpm, other_rpm),
             _ => Verdict::Unchecked,
@@ -434,7 +450,7 @@ impl Context<'_> {
         let (bandwidths, motion) = both(
             || match self.z_band_cpr {
                 Some(k) => (hz(k, self.rpm), 0.0),
-                None => self.bandwidths(&self.grid.z_mm, None, true),
+                None => self.bandwidths(&self.heights(), None, true),
             },
             || self.motion_alone(z),
         );
@@ -451,14 +467,18 @@ impl Context<'_> {
             };
         }
         // The filter's spectrum is let go before the checks' own transforms.
-        let (k, z_grid) = self.lowest_cutoff(&LowPass::new(self.grid), limits.fts_stroke_mm);
+        let filter = LowPass::new(self.grid, &self.heights());
+        let (k, z_grid) = self.lowest_cutoff(&filter, limits.fts_stroke_mm);
+        drop(filter);
         let alone_rpm = feasible_rpm(&alone, self.rpm);
-        self.finish(&z_grid, Some(k), Some(limits), alone_rpm)
+        self.finish(z_grid, Some(k), Some(limits), alone_rpm)
     }
 
     /// The lowest cutoff, cycles per revolution, in [[`AUTO_MIN_CYCLES_PER_REV`], M/2] at which
     /// W fits `stroke_mm` (M/2 when none does: the stroke check then fails), and the slide's
-    /// channel on the grid at that cutoff.
+    /// channel on the grid at that cutoff. One channel is held at a time beside the filter's
+    /// spectrum: the best so far is let go before the next is tried, and made again at the end
+    /// if the last one tried was not the best.
     fn lowest_cutoff(&self, filter: &LowPass, stroke_mm: f64) -> (f64, Vec<f64>) {
         // W's PV at the points for cutoff k, and Z on the grid.
         let pv_w = |k: f64| {
@@ -477,20 +497,22 @@ impl Context<'_> {
             return (lo, at_lo);
         }
         drop(at_lo);
-        let (pv, mut at_hi) = pv_w(hi);
+        let (pv, at_hi) = pv_w(hi);
         if pv > stroke_mm {
             return (hi, at_hi);
         }
+        let mut at_hi = Some(at_hi);
         while hi / lo > 1.0 + AUTO_PRECISION {
             let mid = (lo * hi).sqrt();
+            at_hi = None;
             let (pv, at_mid) = pv_w(mid);
             if pv <= stroke_mm {
-                (hi, at_hi) = (mid, at_mid);
+                (hi, at_hi) = (mid, Some(at_mid));
             } else {
                 lo = mid;
             }
         }
-        (hi, at_hi)
+        (hi, at_hi.unwrap_or_else(|| filter.apply(hi)))
     }
 
     /// The bandwidth figures, Hz, of the slide's channel `z_grid` on the grid and of the
@@ -508,9 +530,9 @@ impl Context<'_> {
             0.0
         } else {
             band(&|| {
-                (self.grid.z_mm.iter().zip(z_grid))
-                    .map(|(a, b)| a - b)
-                    .collect()
+                let mut w = self.heights().into_owned();
+                w.iter_mut().zip(z_grid).for_each(|(a, b)| *a -= b);
+                w
             })
         };
         (slide, fts)

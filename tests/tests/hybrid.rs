@@ -393,7 +393,7 @@ fn the_dynamics_memory_goes_with_the_samples_of_their_grid() {
     );
     let held = cost.dynamics_memory_bytes.unwrap();
     let columns = 24 * cost.points;
-    let per_sample = spiralcam::dynamics::BYTES_PER_SAMPLE as f64;
+    let per_sample = spiralcam::dynamics::bytes_per_sample(samples) as f64;
     assert!(
         (held - columns) as f64 >= per_sample * (samples - 1.0),
         "{cost:?}"
@@ -404,7 +404,7 @@ fn the_dynamics_memory_goes_with_the_samples_of_their_grid() {
         ..Outputs::default()
     };
     let feed = job.strategy.feed_mm_per_rev;
-    let points_only = cost.points * spiralcam::dynamics::BYTES_PER_POINT;
+    let points_only = spiralcam::dynamics::memory_bytes(cost.points, 0.0, false);
     let bound = Limits {
         max_dynamics_bytes: Some((points_only + held) / 2),
         ..Limits::default()

@@ -529,15 +529,13 @@ pub fn fts_grid(job: JsValue, progress: &js_sys::Function) -> Result<Vec<u8>, Js
 const MAX_DOWNLOAD_BYTES: u64 = 1_000_000_000;
 
 /// The most points the page runs the machine dynamics on: they hold the path in the worker's
-/// memory (about 1.4 GB at this limit, 82–85 bytes a point measured natively), beside the
-/// download's buffer, in a wasm32 memory of at most 4 GiB.
+/// memory, beside the download's buffer, in a wasm32 memory of at most 4 GiB.
 const MAX_DYNAMICS_POINTS: u64 = 17_000_000;
 
-/// The most memory the machine dynamics may hold in the page, bytes: their estimate for
-/// [`MAX_DYNAMICS_POINTS`] points with a grid sample a point (1.9 GB). A path whose densest
-/// turn is denser than the others (HCAA, constant arc) has more samples than points, and
-/// reaches it with fewer points.
-const MAX_DYNAMICS_BYTES: u64 = MAX_DYNAMICS_POINTS * spiralcam::dynamics::BYTES_PER_POINT;
+/// The most memory the machine dynamics may hold in the page, bytes (their estimate,
+/// [`spiralcam::dynamics::memory_bytes`]): 1.9 GB. A path whose densest turn is denser than the
+/// others (HCAA, constant arc) has more samples than points, and reaches it with fewer points.
+const MAX_DYNAMICS_BYTES: u64 = 1_900_000_000;
 
 /// The job's cost ([`Planner::cost`]; no clock in the browser), refused beyond the page's
 /// limits for the file that `outputs` names.

@@ -15,10 +15,12 @@
 //!   the controller's bilinear interpolation of the table reproduces W within the job's
 //!   tolerance (a PMAC-style 2-D compensation table, [`crate::nc::fts_grid`]).
 //!
-//! This module runs them over the whole path in memory (the FFTs need it: at most
-//! [`BYTES_PER_POINT`] bytes a point at the peak, where the transforms' buffers, scratch and
-//! twiddles meet the path's columns and grids; every transform takes a length with small
-//! factors, [`spectrum::fast_length`]), before the NC program is written,
+//! - [`real_transform`]: the real-input FFT of a long record in its own memory.
+//!
+//! This module runs them over the whole path in memory (the FFTs need it: [`memory_bytes`],
+//! the path's columns and [`BYTES_PER_SAMPLE`] a sample of its uniform grid at the peak, two
+//! records of it; every transform takes a length with small factors,
+//! [`spectrum::fast_length`]), before the NC program is written,
 //! when the job asks for it: a `strategy.split`, or any limit in `machine` (slides, FTS, block
 //! rate). The program is then written in a second pass with the slide's share `Z` and the
 //! servo's `W` ([`crate::nc::NcWriter::point_split`]).
@@ -72,50 +74,64 @@ impl From<crate::field::FieldError> for DynamicsError {
 pub const SPECTRUM_BINS: usize = 2048;
 
 /// The most points the dynamics analyse: 3·10⁷, above a 28.4 M-point finishing path (measured
-/// 1.77 GB of peak resident set at 28 400 001 points of the sine grid, 62 bytes a point, and
-/// 2.23 GB, 78, where the path's angles and radii are held; [`BYTES_PER_POINT`] reckons 3.4 GB
-/// at this limit). The page admits fewer
+/// 0.78 GB of peak resident set at 28 400 001 points of the sine grid with the automatic split;
+/// [`memory_bytes`] reckons 0.96 GB for a constant-angle path at this limit, 1.44 GB where its
+/// angles and radii are held). The page admits fewer
 /// ([`crate::plan::admission::Limits::max_dynamics_points`]): a tab's memory is smaller.
 pub const MAX_POINTS: u64 = 30_000_000;
 
-/// The peak memory of the dynamics per path point, bytes, with some room: 85–94 MiB (89–99 MB)
-/// of peak resident set for 1 000 001 points of the sine grid (`sinusoid-grid-fts.json` at
-/// 1 000 points a revolution) with each kind of split or with machine limits alone
-/// (`python3 tests/bench/peak_memory.py`), where the path's angles and radii are held; with
-/// the automatic split 373 MB for 4 000 001 points, 1.11 GB for 14 000 001 (79 bytes a point)
-/// and 2.23 GB for 28 400 001 (78; `python3 tests/bench/dynamics.py`). At 14 M points the
-/// instantaneous frequency, the spectrum beside X's figure and the low-pass's first transform
-/// each come within 3 % of the peak. The path's columns (24 bytes a point: θ, ρ, z; the angle
-/// turned is read off θ) are held throughout, or z alone (8) where the spiral gives θ and ρ by
-/// the index (a constant-angle path with one-way compensation,
-/// [`PathSignal::for_spiral`]: 28 400 001 points of the sine grid 1.77 GB, 62 bytes a point),
-/// its uniform grid's heights (8) until Z's bandwidth figure of a split path
-/// (which reads the slide's share instead), the grid's radii (8) until X's bandwidth figure
-/// takes them; beside them the largest are the transforms (a real-input transform at most 1/8
-/// longer than the path, about 16 bytes a sample with its output, and its plan, 12): the
-/// Hilbert transform's with the record it turns, the spectrum's and X's figure's (one plan, two
-/// records), the low-pass's with its spectrum and the slide's channel, a channel's bandwidth
-/// figure with the channel. A plan is made on the second core beside its record only where
-/// that does not raise this peak. The channels at the points (16 bytes) are made after their
-/// spectra.
-pub const BYTES_PER_POINT: u64 = 112;
+/// The dynamics' peak memory a sample of their uniform grid, beside the path's columns, bytes,
+/// with some room: for a long grid, whose transforms run in place
+/// ([`real_transform`]) in records of more than 32 MiB (a record that size is mapped and
+/// unmapped whole, and grown in place). Measured with the automatic split on the sine grid
+/// (`sinusoid-grid-fts.json`; `python3 tests/bench/dynamics.py`): 0.78 GB of peak resident set
+/// at 28 400 001 points, 0.39 GB at 14 000 001, 19 bytes a sample beside the path's heights.
+///
+/// At the peak the dynamics hold the path's columns (24 bytes a point: θ, ρ, z; or z alone, 8,
+/// where the spiral gives θ and ρ by the index, [`PathSignal::for_spiral`]) and two records of
+/// the grid, 8 bytes a sample each, no more: the Hilbert transform in the record's memory beside
+/// the analytic signal's real part (made again) and each pair's band (2 bytes); the spectrum's
+/// and X's figure's records (the grid's heights and radii, made again); the low-pass's spectrum
+/// and one trial channel; a channel's bandwidth figure beside the slide's share. Every
+/// transform runs in its record's memory, every residual and amplitude spectrum too.
+pub const BYTES_PER_SAMPLE: u64 = 24;
 
-/// Of [`BYTES_PER_POINT`], what the dynamics hold a sample of their uniform grid (the grid's
-/// records and the transforms), beside the path's columns (24 bytes a point): a grid denser
-/// than the path (an HCAA or constant-arc path, whose densest turn sets the samples of every
-/// turn, up to [`path_signal::MAX_GRID_PER_POINT`] a point) needs it a sample
-/// ([`memory_bytes`]). 2 077 101 points of the sine grid at HCAA (0.01 µm), a grid of 3.8 M
-/// samples: 305 MB measured, 63 bytes a sample beside the columns.
-pub const BYTES_PER_SAMPLE: u64 = BYTES_PER_POINT - 24;
+/// [`BYTES_PER_SAMPLE`] for a grid of at most [`MID_GRID_SAMPLES`] samples, whose records (at
+/// most 32 MiB) the allocator may copy to grow and keep after they are let go: 31 bytes a
+/// sample measured at 2 000 001 and 4 000 001 points of the sine grid (93 and 169 MB of peak
+/// resident set), 33 at 3.8 M samples of an HCAA path (2 077 101 points, 184 MB).
+pub const MID_BYTES_PER_SAMPLE: u64 = 40;
+
+/// The largest grid [`MID_BYTES_PER_SAMPLE`] applies to: records of 32 MiB.
+pub const MID_GRID_SAMPLES: f64 = 4_194_304.0;
+
+/// [`BYTES_PER_SAMPLE`] for a grid whose transforms are shorter than
+/// [`real_transform::IN_PLACE_FROM`], `realfft`'s: its output (8 bytes a sample) and plans (12
+/// each) beside the record. 67 bytes a sample measured at 951 001 samples of an HCAA path
+/// (519 276 points, 87 MiB of peak resident set; `python3 tests/bench/peak_memory.py`).
+pub const SHORT_BYTES_PER_SAMPLE: u64 = 72;
+
+/// The dynamics' memory a sample of a grid of `samples` samples ([`BYTES_PER_SAMPLE`],
+/// [`MID_BYTES_PER_SAMPLE`] or [`SHORT_BYTES_PER_SAMPLE`]).
+pub fn bytes_per_sample(samples: f64) -> u64 {
+    let transform = spectrum::fast_length(samples.max(0.0) as usize, false);
+    if transform < real_transform::IN_PLACE_FROM {
+        SHORT_BYTES_PER_SAMPLE
+    } else if samples <= MID_GRID_SAMPLES {
+        MID_BYTES_PER_SAMPLE
+    } else {
+        BYTES_PER_SAMPLE
+    }
+}
 
 /// The dynamics' peak memory, bytes, for a path of `points` points whose uniform grid has
 /// `samples` samples ([`grid_samples`]): the path's columns, 24 bytes a point or 8 where the
 /// spiral gives its angles and radii by the index (`indexed`: [`PathSignal::for_spiral`]), and
-/// [`BYTES_PER_SAMPLE`] a sample of the grid, at least one a point.
+/// [`bytes_per_sample`] a sample of the grid, at least one a point.
 pub fn memory_bytes(points: u64, samples: f64, indexed: bool) -> u64 {
     let columns = if indexed { 8 } else { 24 };
     let samples = samples.max(points as f64);
-    points.saturating_mul(columns) + (samples * BYTES_PER_SAMPLE as f64) as u64
+    points.saturating_mul(columns) + (samples * bytes_per_sample(samples) as f64) as u64
 }
 
 /// Points of the synthetic path the dynamics' time is measured on ([`seconds_per_sample`]).
@@ -452,8 +468,7 @@ impl Dynamics {
                 format!("{total} points"),
                 format!(
                     "at most {MAX_POINTS} points when the machine dynamics run (a split or \
-                     machine limits): they hold the path in memory, about {BYTES_PER_POINT} \
-                     bytes a point"
+                     machine limits): they hold the path and its uniform grid in memory"
                 ),
             )
             .into());

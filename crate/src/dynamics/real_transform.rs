@@ -1,5 +1,5 @@
 //! The real-input FFT of a long record in its own memory: the dynamics' transforms, whose
-//! buffers are their peak memory ([`super::BYTES_PER_POINT`]).
+//! buffers are their peak memory ([`super::BYTES_PER_SAMPLE`]).
 //!
 //! A real record of even length L is a complex one of N = L/2 points (even samples the real
 //! parts, odd ones the imaginary), transformed, then untangled by one pass over the pairs of bins

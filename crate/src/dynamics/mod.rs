@@ -519,8 +519,8 @@ impl Dynamics {
         let mut uniform = signal.uniform();
         let held = Cell::new(uniform.as_mut().ok().map(|g| std::mem::take(&mut g.z_mm)));
         let heights = || {
-            held.take()
-                .unwrap_or_else(|| signal.uniform_values(&signal.z_mm))
+            let first = held.take();
+            first.unwrap_or_else(|| signal.uniform_values(&signal.z_mm))
         };
         // The instantaneous frequency takes the grid's radii (each pair's band read off them);
         // X's bandwidth figure has them made again.

@@ -410,19 +410,22 @@ impl PathSignal {
         let step = TAU / m as f64;
         let count = ((self.span_rad() / step + 1e-6).floor() as usize + 1).max(2);
         let mut out = Vec::with_capacity(count);
+        // The interval k … k + 1 with its ends' angles and values, read again only as k moves.
         let mut k = 0;
+        let (mut a0, mut a1) = (self.angle(0), self.angle(1));
+        let (mut v0, mut v1) = (value(0), value(1));
         for j in 0..count {
             let phi = j as f64 * step;
-            while k + 2 < self.len() && self.angle(k + 1) < phi {
+            while k + 2 < self.len() && a1 < phi {
                 k += 1;
+                (a0, v0) = (a1, v1);
+                (a1, v1) = (self.angle(k + 1), value(k + 1));
             }
-            let (a0, a1) = (self.angle(k), self.angle(k + 1));
             let t = if a1 > a0 {
                 ((phi - a0) / (a1 - a0)).clamp(0.0, 1.0)
             } else {
                 1.0
             };
-            let (v0, v1) = (value(k), value(k + 1));
             out.push(v0 + t * (v1 - v0));
         }
         out

@@ -23,7 +23,11 @@
 //! angles and radii are a function of the index (one-way compensation of a constant-angle
 //! spiral, or of a spiral given as a list, [`PathSignal::for_spiral`]): then they are computed
 //! again by the planner's own expression, or read from the spiral's list, whenever they are
-//! read, and only z is held (8 bytes a point).
+//! read, and only z is held (8 bytes a point). The uniform grid's columns may be let go and
+//! made again where they are used ([`UniformSignal::heights`], [`PathSignal::uniform_values`],
+//! [`PathSignal::uniform_radii`]: the same expressions, so the same bits), and a residual is
+//! taken in its record's memory ([`UniformSignal::subtract_symmetric_part`]): the dynamics hold
+//! at most two records of the grid ([`crate::dynamics::BYTES_PER_SAMPLE`]).
 //!
 //! **Rotationally symmetric part** (paper 002, "surface decomposition": a rotationally
 //! symmetric surface cut by X, C and Z plus a freeform remainder). On a spiral each radius is

@@ -74,7 +74,7 @@ impl From<crate::field::FieldError> for DynamicsError {
 pub const SPECTRUM_BINS: usize = 2048;
 
 /// The most points the dynamics analyse: 3·10⁷, above a 28.4 M-point finishing path (measured
-/// 0.78 GB of peak resident set at 28 400 001 points of the sine grid with the automatic split;
+/// 0.80 GB of peak resident set at 28 400 001 points of the sine grid with the automatic split;
 /// [`memory_bytes`] reckons 0.96 GB for a constant-angle path at this limit, 1.44 GB where its
 /// angles and radii are held). The page admits fewer
 /// ([`crate::plan::admission::Limits::max_dynamics_points`]): a tab's memory is smaller.
@@ -84,8 +84,8 @@ pub const MAX_POINTS: u64 = 30_000_000;
 /// with some room: for a long grid, whose transforms run in place
 /// ([`real_transform`]) in records of more than 32 MiB (a record that size is mapped and
 /// unmapped whole, and grown in place). Measured with the automatic split on the sine grid
-/// (`sinusoid-grid-fts.json`; `python3 tests/bench/dynamics.py`): 0.78 GB of peak resident set
-/// at 28 400 001 points, 0.39 GB at 14 000 001, 19 bytes a sample beside the path's heights.
+/// (`sinusoid-grid-fts.json`; `python3 tests/bench/dynamics.py`): 0.80 GB of peak resident set
+/// at 28 400 001 points, 0.40 GB at 14 000 001, 19 bytes a sample beside the path's heights.
 ///
 /// At the peak the dynamics hold the path's columns (24 bytes a point: θ, ρ, z; or z alone, 8,
 /// where the spiral gives θ and ρ by the index, [`PathSignal::for_spiral`]) and two records of
@@ -98,8 +98,8 @@ pub const BYTES_PER_SAMPLE: u64 = 24;
 
 /// [`BYTES_PER_SAMPLE`] for a grid of at most [`MID_GRID_SAMPLES`] samples, whose records (at
 /// most 32 MiB) the allocator may copy to grow and keep after they are let go: 31 bytes a
-/// sample measured at 2 000 001 and 4 000 001 points of the sine grid (93 and 169 MB of peak
-/// resident set), 33 at 3.8 M samples of an HCAA path (2 077 101 points, 184 MB).
+/// sample measured at 2 000 001 and 4 000 001 points of the sine grid (95 and 173 MB of peak
+/// resident set), 33 at 3.8 M samples of an HCAA path (2 077 101 points, 189 MB).
 pub const MID_BYTES_PER_SAMPLE: u64 = 40;
 
 /// The largest grid [`MID_BYTES_PER_SAMPLE`] applies to: records of 32 MiB.

@@ -313,6 +313,48 @@ fn the_dynamics_of_a_constant_angle_path_hold_its_heights_alone_and_find_the_sam
     assert_eq!(run, Dynamics::of_points(&job, &points).unwrap());
 }
 
+/// The dynamics of HCAA and constant-arc paths with one-way compensation hold each point's φ
+/// on its spiral beside its height, the angles and radii computed from φ being the planned ones
+/// to the bit (`PathSignal::for_spiral`), and find the same as with every column held; with
+/// two-way compensation (the points moved off the spiral) every column is held.
+#[test]
+fn the_dynamics_of_a_walked_path_hold_its_phi_and_heights_and_find_the_same() {
+    use spiralcam::job::{Compensation, Sampling};
+    let hcaa = Sampling::Hcaa {
+        pv_tolerance_um: 0.1,
+    };
+    let arc = Sampling::ConstantArc {
+        arc_length_mm: 0.05,
+        max_angle_step_deg: 10.0,
+    };
+    for (sampling, compensation) in [
+        (hcaa, Compensation::OneWay),
+        (arc.clone(), Compensation::OneWay),
+        (arc, Compensation::TwoWay),
+    ] {
+        let mut job = coarse_grid_fts();
+        job.strategy.sampling = sampling.clone();
+        job.strategy.compensation = compensation;
+        let planner = Planner::new(&job).unwrap();
+        let points: Vec<_> = planner.points().map(|p| p.unwrap()).collect();
+        let mut walked = PathSignal::for_spiral(planner.path().spiral(), points.len());
+        points.iter().for_each(|p| walked.push(p));
+        let one_way = compensation == Compensation::OneWay;
+        assert_eq!(walked.is_walked(), one_way, "{sampling:?} {compensation:?}");
+        let spiral = planner.path().spiral();
+        assert_eq!(
+            PathSignal::bytes_per_point(spiral, one_way),
+            if one_way { 16 } else { 24 }
+        );
+        for (i, p) in points.iter().enumerate() {
+            let got = [walked.theta(i), walked.rho(i), walked.z_mm[i]].map(f64::to_bits);
+            assert_eq!(got, [p.theta, p.rho, p.z].map(f64::to_bits), "point {i}");
+        }
+        let run = Dynamics::run(planner.path(), &mut |_| ControlFlow::Continue(())).unwrap();
+        assert_eq!(run, Dynamics::of_points(&job, &points).unwrap());
+    }
+}
+
 #[test]
 fn the_dynamics_refuse_a_path_too_long_to_hold() {
     let mut job = coarse_grid_fts();
@@ -369,7 +411,8 @@ fn assert_feed_named(e: &str, least: f64) {
 
 /// A path whose densest turn is denser than the others (constant arc: the rim's) has more
 /// samples on the dynamics' grid than points: the estimate counts them (within 2 % of the grid
-/// the dynamics compute on), its memory goes with them, and a memory bound refuses on them,
+/// the dynamics compute on), its memory goes with them (beside 16 bytes a point: the heights
+/// and each point's φ), and a memory bound refuses on them,
 /// naming a feed that would do; the points alone would have been admitted.
 #[test]
 fn the_dynamics_memory_goes_with_the_samples_of_their_grid() {
@@ -392,10 +435,12 @@ fn the_dynamics_memory_goes_with_the_samples_of_their_grid() {
         "{samples} against {grid}"
     );
     let held = cost.dynamics_memory_bytes.unwrap();
-    let columns = 24 * cost.points;
+    // The path's heights and each point's φ on its spiral (one-way compensation).
+    let columns = 16 * cost.points;
     let per_sample = spiralcam::dynamics::bytes_per_sample(samples) as f64;
+    let grid_bytes = (held - columns) as f64;
     assert!(
-        (held - columns) as f64 >= per_sample * (samples - 1.0),
+        grid_bytes >= per_sample * (samples - 1.0) && grid_bytes <= per_sample * samples,
         "{cost:?}"
     );
     // A bound between the points' share and the whole: refused on the grid.
@@ -404,7 +449,7 @@ fn the_dynamics_memory_goes_with_the_samples_of_their_grid() {
         ..Outputs::default()
     };
     let feed = job.strategy.feed_mm_per_rev;
-    let points_only = spiralcam::dynamics::memory_bytes(cost.points, 0.0, false);
+    let points_only = spiralcam::dynamics::memory_bytes(cost.points, 0.0, 16);
     let bound = Limits {
         max_dynamics_bytes: Some((points_only + held) / 2),
         ..Limits::default()

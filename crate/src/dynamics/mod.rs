@@ -75,8 +75,9 @@ pub const SPECTRUM_BINS: usize = 2048;
 
 /// The most points the dynamics analyse: 3·10⁷, above a 28.4 M-point finishing path (measured
 /// 0.80 GB of peak resident set at 28 400 001 points of the sine grid with the automatic split;
-/// [`memory_bytes`] reckons 0.96 GB for a constant-angle path at this limit, 1.44 GB where its
-/// angles and radii are held). The page admits fewer
+/// [`memory_bytes`] reckons 0.96 GB for a constant-angle path at this limit, 1.2 GB for an
+/// HCAA or constant-arc one on a grid of as many samples, 1.44 GB where the angles and radii
+/// are held; such paths' grids have more samples than points). The page admits fewer
 /// ([`crate::plan::admission::Limits::max_dynamics_points`]): a tab's memory is smaller.
 pub const MAX_POINTS: u64 = 30_000_000;
 
@@ -87,8 +88,9 @@ pub const MAX_POINTS: u64 = 30_000_000;
 /// (`sinusoid-grid-fts.json`; `python3 tests/bench/dynamics.py`): 0.80 GB of peak resident set
 /// at 28 400 001 points, 0.40 GB at 14 000 001, 19 bytes a sample beside the path's heights.
 ///
-/// At the peak the dynamics hold the path's columns (24 bytes a point: θ, ρ, z; or z alone, 8,
-/// where the spiral gives θ and ρ by the index, [`PathSignal::for_spiral`]) and two records of
+/// At the peak the dynamics hold the path's columns (24 bytes a point: θ, ρ, z; z alone, 8,
+/// where the spiral gives θ and ρ by the index; z and the spiral's φ, 16, where it is walked by
+/// its step rule: [`PathSignal::for_spiral`]) and two records of
 /// the grid, 8 bytes a sample each, no more: the Hilbert transform in the record's memory beside
 /// the analytic signal's real part (made again) and each pair's band (2 bytes); the spectrum's
 /// and X's figure's records (the grid's heights and radii, made again); the low-pass's spectrum
@@ -125,13 +127,12 @@ pub fn bytes_per_sample(samples: f64) -> u64 {
 }
 
 /// The dynamics' peak memory, bytes, for a path of `points` points whose uniform grid has
-/// `samples` samples ([`grid_samples`]): the path's columns, 24 bytes a point or 8 where the
-/// spiral gives its angles and radii by the index (`indexed`: [`PathSignal::for_spiral`]), and
+/// `samples` samples ([`grid_samples`]): the path's columns, `bytes_per_point` a point (24, or
+/// 8 or 16 where the spiral gives the angles and radii: [`PathSignal::bytes_per_point`]), and
 /// [`bytes_per_sample`] a sample of the grid, at least one a point.
-pub fn memory_bytes(points: u64, samples: f64, indexed: bool) -> u64 {
-    let columns = if indexed { 8 } else { 24 };
+pub fn memory_bytes(points: u64, samples: f64, bytes_per_point: u64) -> u64 {
     let samples = samples.max(points as f64);
-    points.saturating_mul(columns) + (samples * bytes_per_sample(samples) as f64) as u64
+    points.saturating_mul(bytes_per_point) + (samples * bytes_per_sample(samples) as f64) as u64
 }
 
 /// Points of the synthetic path the dynamics' time is measured on ([`seconds_per_sample`]).
@@ -474,8 +475,8 @@ impl Dynamics {
             .into());
         }
         // The path as the dynamics keep it: three columns, 24 bytes a point rather than a
-        // whole [`PathPoint`], or its heights alone (8) where the spiral gives the angles and
-        // radii by the index.
+        // whole [`PathPoint`]; its heights alone (8) where the spiral gives the angles and
+        // radii by the index, with each point's φ (16) where it gives them from φ.
         let capacity = usize::try_from(total).unwrap_or(0);
         let mut signal = PathSignal::for_spiral(path.spiral(), capacity);
         path.for_each_point(Stage::Dynamics, progress, &mut |p, _| {

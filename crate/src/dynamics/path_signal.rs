@@ -23,7 +23,11 @@
 //! angles and radii are a function of the index (one-way compensation of a constant-angle
 //! spiral, or of a spiral given as a list, [`PathSignal::for_spiral`]): then they are computed
 //! again by the planner's own expression, or read from the spiral's list, whenever they are
-//! read, and only z is held (8 bytes a point). The uniform grid's columns may be let go and
+//! read, and only z is held (8 bytes a point). A spiral walked by its step rule (one-way
+//! compensation of a constant-arc, HCAA or adaptive spiral) has points that are no function of
+//! their index, but each is the spiral's point at some φ (`ρ = b·φ`, `θ = θ₀ ± (φ₀ − φ)`), which
+//! is recovered from the point to the bit ([`crate::path::WalkedRule::phi_of`]): φ and z are
+//! held (16 bytes a point). The uniform grid's columns may be let go and
 //! made again where they are used ([`UniformSignal::heights`], [`PathSignal::uniform_values`],
 //! [`PathSignal::uniform_radii`]: the same expressions, so the same bits), and a residual is
 //! taken in its record's memory ([`UniformSignal::subtract_symmetric_part`]): the dynamics hold
@@ -50,7 +54,7 @@
 //! `1 − T(ν)`, `T(ν) = (sin πν / (M·sin(πν/M)))²` ([`residual_gain`]): 1 at whole ν, at
 //! least 0.95 from ν = 1 on.
 
-use crate::path::{IndexedPoints, PathPoint, Spiral};
+use crate::path::{IndexedPoints, PathPoint, Spiral, WalkedRule};
 use std::borrow::Cow;
 use std::f64::consts::TAU;
 use thiserror::Error;
@@ -72,9 +76,11 @@ pub struct PathSignal {
     pub z_mm: Vec<f64>,
 }
 
-/// θ and ρ of the points: held (16 bytes a point), or, where every point is its spiral's
+/// θ and ρ of the points: held (16 bytes a point); or, where every point is its spiral's
 /// point of the same index (one-way compensation of a constant-angle spiral or of one given
-/// as a list), its spiral's ([`PathSignal::for_spiral`]).
+/// as a list), its spiral's (nothing held); or, where every point is a point of a spiral
+/// walked by its step rule (one-way compensation of a constant-arc, HCAA or adaptive spiral),
+/// the spiral's point at the φ held for it (φ, 8 bytes a point) ([`PathSignal::for_spiral`]).
 #[derive(Debug, Clone)]
 enum AnglesRadii {
     Held {
@@ -82,6 +88,10 @@ enum AnglesRadii {
         rho_mm: Vec<f64>,
     },
     Indexed(IndexedPoints),
+    Walked {
+        rule: WalkedRule,
+        phi: Vec<f64>,
+    },
 }
 
 impl Default for AnglesRadii {
@@ -185,16 +195,35 @@ impl PathSignal {
     /// points are a function of their index ([`Spiral::indexed_points`]: constant angle, or a
     /// list the spiral holds), their angles and radii are not held while the points pushed are
     /// the spiral's own (point `i` at the spiral's point `i`, as one-way compensation leaves
-    /// them): 8 bytes a point instead of 24. The first point that is not (two-way compensation
-    /// moves both) has them held from then on, those before it computed again, so the columns
-    /// are always what was pushed.
+    /// them): 8 bytes a point instead of 24. Where the spiral is walked by its step rule on the
+    /// plane ([`Spiral::walked_rule`]: constant arc, HCAA, adaptive), each point's φ is held
+    /// while the points pushed lie on the spiral ([`WalkedRule::phi_of`]): 16 bytes a point.
+    /// The first point that is not (two-way compensation moves both) has them held from then
+    /// on, those before it computed again, so the columns are always what was pushed.
     pub fn for_spiral(spiral: &Spiral, n: usize) -> Self {
-        match spiral.indexed_points() {
-            Some(points) => Self {
-                angles_radii: AnglesRadii::Indexed(points),
-                z_mm: Vec::with_capacity(n),
+        let angles_radii = match (spiral.indexed_points(), spiral.walked_rule()) {
+            (Some(points), _) => AnglesRadii::Indexed(points),
+            (None, Some(rule)) => AnglesRadii::Walked {
+                rule,
+                phi: Vec::with_capacity(n),
             },
-            None => Self::with_capacity(n),
+            (None, None) => return Self::with_capacity(n),
+        };
+        Self {
+            angles_radii,
+            z_mm: Vec::with_capacity(n),
+        }
+    }
+
+    /// The bytes a point of a path along `spiral` takes in [`Self::for_spiral`]'s signal
+    /// where the points are the spiral's own (`on_spiral`: one-way compensation): 8 where
+    /// the spiral gives them by the index, 16 where a point's φ is held, 24 where its θ, ρ and
+    /// z are.
+    pub fn bytes_per_point(spiral: &Spiral, on_spiral: bool) -> u64 {
+        match (on_spiral, spiral.indexed_points(), spiral.walked_rule()) {
+            (true, Some(_), _) => 8,
+            (true, None, Some(_)) => 16,
+            _ => 24,
         }
     }
 
@@ -218,31 +247,38 @@ impl PathSignal {
     /// Appends a point.
     pub fn push(&mut self, p: &PathPoint) {
         let i = self.z_mm.len();
-        if let AnglesRadii::Indexed(points) = &self.angles_radii {
-            let own = (i as u64 <= points.last()).then(|| points.at(i as u64));
-            let same = own.is_some_and(|q| {
-                q.theta.to_bits() == p.theta.to_bits() && q.rho.to_bits() == p.rho.to_bits()
-            });
-            if !same {
-                let n = self.z_mm.capacity();
-                let (mut theta_rad, mut rho_mm) = (Vec::with_capacity(n), Vec::with_capacity(n));
-                for q in (0..i as u64).map(|k| points.at(k)) {
-                    theta_rad.push(q.theta);
-                    rho_mm.push(q.rho);
-                }
-                self.angles_radii = AnglesRadii::Held { theta_rad, rho_mm };
+        match &mut self.angles_radii {
+            AnglesRadii::Held { theta_rad, rho_mm } => {
+                theta_rad.push(p.theta);
+                rho_mm.push(p.rho);
             }
+            AnglesRadii::Indexed(points) => {
+                let own = (i as u64 <= points.last()).then(|| points.at(i as u64));
+                let same = own.is_some_and(|q| {
+                    q.theta.to_bits() == p.theta.to_bits() && q.rho.to_bits() == p.rho.to_bits()
+                });
+                if !same {
+                    self.hold_columns(p);
+                }
+            }
+            AnglesRadii::Walked { rule, phi } => match rule.phi_of(p.theta, p.rho) {
+                Some(x) => phi.push(x),
+                None => self.hold_columns(p),
+            },
         }
-        self.push_columns(p.theta, p.rho);
         self.z_mm.push(p.z);
     }
 
-    /// Appends θ and ρ where they are held.
-    fn push_columns(&mut self, theta: f64, rho: f64) {
-        if let AnglesRadii::Held { theta_rad, rho_mm } = &mut self.angles_radii {
-            theta_rad.push(theta);
-            rho_mm.push(rho);
-        }
+    /// Holds the angles and radii from now on: those of the points so far computed, then
+    /// `p`'s.
+    fn hold_columns(&mut self, p: &PathPoint) {
+        let (i, n) = (self.z_mm.len(), self.z_mm.capacity());
+        let (mut theta_rad, mut rho_mm) = (Vec::with_capacity(n), Vec::with_capacity(n));
+        theta_rad.extend((0..i).map(|k| self.theta(k)));
+        rho_mm.extend((0..i).map(|k| self.rho(k)));
+        theta_rad.push(p.theta);
+        rho_mm.push(p.rho);
+        self.angles_radii = AnglesRadii::Held { theta_rad, rho_mm };
     }
 
     /// Whether the angles and radii are computed from the points' indices, not held
@@ -251,19 +287,29 @@ impl PathSignal {
         matches!(self.angles_radii, AnglesRadii::Indexed(_))
     }
 
+    /// Whether the angles and radii are computed from each point's φ on its spiral, φ alone
+    /// held ([`Self::for_spiral`]).
+    pub fn is_walked(&self) -> bool {
+        matches!(self.angles_radii, AnglesRadii::Walked { .. })
+    }
+
     /// The spindle angle θ of point `i`, radians.
+    #[inline]
     pub fn theta(&self, i: usize) -> f64 {
         match &self.angles_radii {
             AnglesRadii::Held { theta_rad, .. } => theta_rad[i],
             AnglesRadii::Indexed(points) => points.at(i as u64).theta,
+            AnglesRadii::Walked { rule, phi } => rule.at(phi[i]).theta,
         }
     }
 
     /// The radius ρ of point `i`, mm.
+    #[inline]
     pub fn rho(&self, i: usize) -> f64 {
         match &self.angles_radii {
             AnglesRadii::Held { rho_mm, .. } => rho_mm[i],
             AnglesRadii::Indexed(points) => points.at(i as u64).rho,
+            AnglesRadii::Walked { rule, phi } => rule.at(phi[i]).rho,
         }
     }
 
@@ -274,7 +320,7 @@ impl PathSignal {
             AnglesRadii::Held { theta_rad, rho_mm } => {
                 (Cow::Borrowed(theta_rad), Cow::Borrowed(rho_mm))
             }
-            AnglesRadii::Indexed(_) => (
+            AnglesRadii::Indexed(_) | AnglesRadii::Walked { .. } => (
                 (0..self.len()).map(|i| self.theta(i)).collect(),
                 (0..self.len()).map(|i| self.rho(i)).collect(),
             ),
@@ -283,6 +329,7 @@ impl PathSignal {
 
     /// The angle turned from the first point to point `i`, `|θ_i − θ_0|`, radians, whatever
     /// the direction.
+    #[inline]
     pub fn angle(&self, i: usize) -> f64 {
         (self.theta(i) - self.theta(0)).abs()
     }
@@ -310,6 +357,7 @@ impl PathSignal {
         match &self.angles_radii {
             AnglesRadii::Held { theta_rad, rho_mm } => (theta_rad.len(), rho_mm.len()),
             AnglesRadii::Indexed(_) => (self.len(), self.len()),
+            AnglesRadii::Walked { phi, .. } => (phi.len(), phi.len()),
         }
     }
 

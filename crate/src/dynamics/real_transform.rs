@@ -206,11 +206,11 @@ impl InPlace {
         let z0 = z[0];
         z[0] = Complex::new(z0.re + z0.im, 0.0);
         z[n] = Complex::new(z0.re - z0.im, 0.0);
-        for k in 1..=n / 2 {
+        for (k, w) in (1..=n / 2).zip(self.pairing.from(1)) {
             let (a, b) = (z[k], z[n - k].conj());
             let even = (a + b) * 0.5;
             let odd = (a - b) * Complex::new(0.0, -0.5);
-            let turned = self.pairing.at(k) * odd;
+            let turned = w * odd;
             z[k] = even + turned;
             z[n - k] = (even - turned).conj();
         }
@@ -222,10 +222,10 @@ impl InPlace {
         let n = self.len / 2;
         let (first, last) = (z[0].re, z[n].re);
         z[0] = Complex::new(first + last, first - last);
-        for k in 1..=n / 2 {
+        for (k, w) in (1..=n / 2).zip(self.pairing.from(1)) {
             let (a, b) = (z[k], z[n - k].conj());
             let even = a + b;
-            let odd = (a - b) * self.pairing.at(k) * Complex::new(0.0, 1.0);
+            let odd = (a - b) * w * Complex::new(0.0, 1.0);
             z[k] = even + odd;
             z[n - k] = (even - odd).conj();
         }
@@ -259,8 +259,18 @@ impl Twiddles {
         }
     }
 
-    fn at(&self, m: usize) -> Complex<f64> {
-        self.coarse[m / self.step] * self.fine[m % self.step]
+    /// `w^m` for m = `first`, `first` + 1, …, each `coarse[q]·fine[s]` with `m = q·t + s`
+    /// stepped (no division after the first).
+    fn from(&self, first: usize) -> impl Iterator<Item = Complex<f64>> + '_ {
+        let (mut q, mut s) = (first / self.step, first % self.step);
+        std::iter::from_fn(move || {
+            let w = self.coarse[q] * self.fine[s];
+            s += 1;
+            if s == self.step {
+                (q, s) = (q + 1, 0);
+            }
+            Some(w)
+        })
     }
 }
 

@@ -14,7 +14,7 @@ pub mod hcaa;
 pub mod space_spiral;
 pub mod spiral;
 
-pub use spiral::{IndexedPoints, MAX_POINTS, Spiral, SpiralPoint};
+pub use spiral::{IndexedPoints, MAX_POINTS, Spiral, SpiralPoint, WalkedRule};
 
 use crate::field::FieldError;
 use crate::job::JobError;

@@ -118,6 +118,7 @@ enum Indexed {
 
 impl IndexedPoints {
     /// Point `k` (at most [`Self::last`]).
+    #[inline]
     pub fn at(&self, k: u64) -> SpiralPoint {
         match &self.0 {
             Indexed::Angle(rule) => rule.at(k),
@@ -145,12 +146,54 @@ struct AngleRule {
 }
 
 impl AngleRule {
+    #[inline]
     fn at(&self, k: u64) -> SpiralPoint {
         let remaining = self.steps.saturating_sub(k) as f64;
         SpiralPoint {
             rho: remaining * self.feed / self.per_rev,
             theta: self.theta0 + self.sign * TAU * (k as f64) / self.per_rev,
         }
+    }
+}
+
+/// The point at φ of a spiral walked by its step rule (constant arc, HCAA, adaptive): the
+/// planar spiral `ρ = b·φ`, `θ = θ₀ ± (φ₀ − φ)`, φ falling from `φ₀ = R/b` at the rim to 0,
+/// the one expression [`SpiralPoints`] computes those points by. A point of such a spiral is
+/// not a function of its index (its φ comes from walking the rule from the rim), but its φ can
+/// be recovered from it ([`Self::phi_of`]): the dynamics hold that one number a point instead
+/// of θ and ρ ([`crate::dynamics::path_signal::PathSignal`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WalkedRule {
+    b: f64,
+    phi0: f64,
+    theta0: f64,
+    sign: f64,
+}
+
+impl WalkedRule {
+    /// The spiral's point at `phi`.
+    #[inline]
+    pub fn at(&self, phi: f64) -> SpiralPoint {
+        SpiralPoint {
+            rho: self.b * phi,
+            theta: self.theta0 + self.sign * (self.phi0 - phi),
+        }
+    }
+
+    /// A φ whose point [`Self::at`] is `(theta, rho)` to the bit, if there is one: a point of
+    /// the spiral has `ρ = fl(b·φ)`, so its φ lies within two units in the last place of
+    /// `ρ/b`, and the seven values from three below to three above are tried.
+    pub fn phi_of(&self, theta: f64, rho: f64) -> Option<f64> {
+        let guess = (rho / self.b).to_bits();
+        [0, -1, 1, -2, 2, -3, 3]
+            .into_iter()
+            .map(|d| f64::from_bits(guess.wrapping_add_signed(d)))
+            .find(|&phi| {
+                let p = self.at(phi);
+                phi >= 0.0
+                    && p.rho.to_bits() == rho.to_bits()
+                    && p.theta.to_bits() == theta.to_bits()
+            })
     }
 }
 
@@ -511,6 +554,26 @@ impl Spiral {
         })))
     }
 
+    /// The rule of a spiral walked by its step rule on the plane (constant arc, HCAA,
+    /// adaptive), whose points are found by walking but follow from their φ; `None` for a
+    /// constant-angle spiral, one given as a list, and a space spiral (its points are moved
+    /// onto the surface).
+    pub fn walked_rule(&self) -> Option<WalkedRule> {
+        match self.sampling {
+            _ if self.explicit.is_some() => None,
+            Sampling::ConstantArc { .. } | Sampling::Hcaa { .. } | Sampling::Adaptive { .. } => {
+                let b = self.feed / TAU;
+                Some(WalkedRule {
+                    b,
+                    phi0: self.outer_radius / b,
+                    theta0: self.theta0,
+                    sign: self.sign,
+                })
+            }
+            _ => None,
+        }
+    }
+
     /// (sin, cos) of the `step`-th of `n` angles of a turn from the start angle.
     fn step_sin_cos(&self, step: usize, n: usize) -> (f64, f64) {
         (self.theta0 + self.sign * TAU * step as f64 / n as f64).sin_cos()
@@ -701,6 +764,17 @@ fn step_in(b: f64, phi: f64, ds: f64) -> f64 {
     x.clamp(0.0, phi)
 }
 
+/// The point at `phi` of a walked spiral, by [`WalkedRule::at`].
+fn walked_point(b: f64, phi0: f64, theta0: f64, sign: f64, phi: f64) -> SpiralPoint {
+    let rule = WalkedRule {
+        b,
+        phi0,
+        theta0,
+        sign,
+    };
+    rule.at(phi)
+}
+
 #[derive(Debug, Clone)]
 enum State {
     Angle {
@@ -794,10 +868,7 @@ impl Iterator for SpiralPoints {
                 ds,
                 cap,
             } => {
-                let p = SpiralPoint {
-                    rho: *b * *phi,
-                    theta: t0 + sign * (*phi0 - *phi),
-                };
+                let p = walked_point(*b, *phi0, t0, sign, *phi);
                 if *phi == 0.0 {
                     self.done = true;
                 } else {
@@ -806,10 +877,7 @@ impl Iterator for SpiralPoints {
                 Some(p)
             }
             State::Zoned { b, phi0, phi, zone } => {
-                let p = SpiralPoint {
-                    rho: *b * *phi,
-                    theta: t0 + sign * (*phi0 - *phi),
-                };
+                let p = walked_point(*b, *phi0, t0, sign, *phi);
                 if *phi == 0.0 {
                     self.done = true;
                     return Some(p);
@@ -868,6 +936,72 @@ mod tests {
                 assert_eq!(it.nth(n), walk.get(n + 1).copied(), "1 + n {n}");
             }
         }
+    }
+
+    #[test]
+    fn a_walked_spirals_points_give_back_their_phi() {
+        let hcaa = Sampling::Hcaa {
+            pv_tolerance_um: 1.0,
+        };
+        // Radii R from 50 mm to 2 mm with feeds from 0.1 mm to 0.04 µm (φ up to 3·10⁶ rad),
+        // both directions, start angles that are no multiples of a step.
+        for (radius, feed, ds, direction, start) in [
+            (50.0, 0.1, 0.002, Direction::Cw, 0.0),
+            (2.0, 1e-4, 0.002, Direction::Ccw, 37.5),
+            (20.0, 4e-5, 0.5, Direction::Cw, -123.4),
+        ] {
+            let arc = Sampling::ConstantArc {
+                arc_length_mm: ds,
+                max_angle_step_deg: 20.0,
+            };
+            let zoned = [
+                Zone {
+                    inner_radius_mm: 0.4 * radius,
+                    step: Step::Angle { step_rad: 0.3 },
+                },
+                Zone {
+                    inner_radius_mm: 0.0,
+                    step: Step::Arc {
+                        arc_length_mm: ds,
+                        max_step_rad: 0.5,
+                    },
+                },
+            ];
+            let spirals = [
+                Spiral::new(radius, feed, &arc, direction, start).unwrap(),
+                Spiral::with_zones(radius, feed, &hcaa, &zoned, direction, start).unwrap(),
+            ];
+            for spiral in &spirals {
+                let rule = spiral.walked_rule().unwrap();
+                for rho in [radius, 0.4 * radius + 1e-3, 0.7, 1e-3] {
+                    for p in spiral.points_from(rho).take(20_000) {
+                        let phi = rule.phi_of(p.theta, p.rho);
+                        let back = phi.map(|phi| rule.at(phi));
+                        assert_eq!(back, Some(p), "ρ {} θ {} feed {feed}", p.rho, p.theta);
+                        // A point a nanometre off the spiral is not on it.
+                        assert_eq!(rule.phi_of(p.theta, p.rho + 1e-6), None);
+                    }
+                }
+            }
+        }
+        let arc = Sampling::ConstantArc {
+            arc_length_mm: 0.002,
+            max_angle_step_deg: 20.0,
+        };
+        // The last point, at the centre.
+        let spiral = Spiral::new(0.05, 0.01, &arc, Direction::Cw, 10.0).unwrap();
+        let centre = spiral.points().last().unwrap();
+        assert_eq!(centre.rho, 0.0);
+        let rule = spiral.walked_rule().unwrap();
+        assert_eq!(rule.phi_of(centre.theta, 0.0), Some(0.0));
+        // Spirals whose points are given by the index are not walked.
+        let angle = Sampling::ConstantAngle { points_per_rev: 7 };
+        assert!(
+            Spiral::new(1.0, 0.1, &angle, Direction::Cw, 0.0)
+                .unwrap()
+                .walked_rule()
+                .is_none()
+        );
     }
 
     #[test]

@@ -24,6 +24,7 @@
 
 use super::{PlanError, Planner};
 use crate::dynamics;
+use crate::dynamics::path_signal::PathSignal;
 use crate::field::{FieldError, feed_within, short};
 use crate::job::Compensation;
 use crate::nc::{CsvWriter, FtsTableWriter, NcWriter};
@@ -133,10 +134,10 @@ impl Planner {
             }
             _ => None,
         };
-        // The angles and radii are not held where the spiral gives them by the index and
-        // one-way compensation leaves them as they are.
-        let indexed = self.spiral().indexed_points().is_some()
-            && self.job().strategy.compensation != Compensation::TwoWay;
+        // The angles and radii are not held where the spiral gives them (by the index, or
+        // from a point's φ) and one-way compensation leaves them as they are.
+        let on_spiral = self.job().strategy.compensation != Compensation::TwoWay;
+        let bytes_per_point = PathSignal::bytes_per_point(self.spiral(), on_spiral);
         let seconds = seconds.map(|s| s + dynamics_seconds.unwrap_or(0.0));
         let split = self.job().strategy.split.is_some();
         let n = path_points as f64;
@@ -148,7 +149,8 @@ impl Planner {
             fts_table_bytes: split
                 .then(|| crate::nc::fts_table::HEADER.len() as u64 + (w.fts_row * n) as u64),
             dynamics_samples: samples.map(|s| s as u64),
-            dynamics_memory_bytes: samples.map(|s| dynamics::memory_bytes(path_points, s, indexed)),
+            dynamics_memory_bytes: samples
+                .map(|s| dynamics::memory_bytes(path_points, s, bytes_per_point)),
             fts_grid_bytes: split
                 .then(|| crate::nc::fts_grid::max_bytes(dynamics::fts_grid::MAX_ENTRIES)),
             seconds,

@@ -516,12 +516,14 @@ impl Dynamics {
         let rpm = machine.spindle_rpm;
         // The path on its uniform grid, resampled once for every analysis below. The grid's
         // heights are handed to the first analysis that takes them and made again for the
-        // others ([`PathSignal::uniform_values`], to the bit), not held beside the transforms.
+        // others ([`PathSignal::values_at`] the grid's rate, to the bit), not held beside the
+        // transforms.
         let mut uniform = signal.uniform();
+        let per_rev = uniform.as_ref().map_or(0, |g| g.samples_per_rev);
         let held = Cell::new(uniform.as_mut().ok().map(|g| std::mem::take(&mut g.z_mm)));
         let heights = || {
             let first = held.take();
-            first.unwrap_or_else(|| signal.uniform_values(&signal.z_mm))
+            first.unwrap_or_else(|| signal.values_at(per_rev, &signal.z_mm))
         };
         // The instantaneous frequency takes the grid's radii (each pair's band read off them);
         // X's bandwidth figure has them made again.
@@ -537,7 +539,7 @@ impl Dynamics {
         // length on the two cores.
         let (spectrum, z_band_cpr, x_needed_hz) = match uniform.as_ref() {
             Ok(g) => {
-                let (heights, radii) = (heights(), signal.uniform_radii());
+                let (heights, radii) = (heights(), signal.radii_at(per_rev));
                 let (s, z_band, x_band) =
                     amplitude_spectrum_and_bands_on(g, heights, radii, rpm, SPECTRUM_BINS);
                 (s, z_band, Some(hz(x_band, rpm)))
@@ -581,13 +583,13 @@ impl Dynamics {
                     let cpr = match &z_slide {
                         Some(z) => {
                             highest_significant_cycles_per_rev_beside(g, grid_samples, || {
-                                signal.uniform_values(z)
+                                signal.values_at(per_rev, z)
                             })
                         }
                         None => z_band_cpr.unwrap_or_else(|| {
                             highest_significant_cycles_per_rev(
                                 g,
-                                signal.uniform_values(&signal.z_mm),
+                                signal.values_at(per_rev, &signal.z_mm),
                             )
                         }),
                     };

@@ -28,8 +28,9 @@
 //! their index, but each is the spiral's point at some φ (`ρ = b·φ`, `θ = θ₀ ± (φ₀ − φ)`), which
 //! is recovered from the point to the bit ([`crate::path::WalkedRule::phi_of`]): φ and z are
 //! held (16 bytes a point). The uniform grid's columns may be let go and
-//! made again where they are used ([`UniformSignal::heights`], [`PathSignal::uniform_values`],
-//! [`PathSignal::uniform_radii`]: the same expressions, so the same bits), and a residual is
+//! made again where they are used ([`UniformSignal::heights`], [`PathSignal::values_at`],
+//! [`PathSignal::radii_at`] the grid's rate: the same expressions, so the same bits; the path
+//! is checked once, when its grid is first made), and a residual is
 //! taken in its record's memory ([`UniformSignal::subtract_symmetric_part`]): the dynamics hold
 //! at most two records of the grid ([`crate::dynamics::BYTES_PER_SAMPLE`]).
 //!
@@ -440,20 +441,45 @@ impl PathSignal {
     /// The radii on the grid of [`Self::uniform`], the same to the bit; empty when the path
     /// cannot be resampled.
     pub fn uniform_radii(&self) -> Vec<f64> {
-        if self.check().is_err() {
-            return Vec::new();
+        match self.check() {
+            Ok(()) => self.radii_at(self.samples_per_rev()),
+            Err(_) => Vec::new(),
         }
-        self.resample(|i| self.rho(i), self.samples_per_rev())
     }
 
     /// `values` (one per point) on the grid of [`Self::uniform`]; empty when the path cannot be
     /// resampled. The slide's share of a split path is analysed on the path's own grid this
     /// way, without a copy of the path.
     pub fn uniform_values(&self, values: &[f64]) -> Vec<f64> {
-        if self.check().is_err() || values.len() != self.len() {
-            return Vec::new();
+        match self.check() {
+            Ok(()) => self.values_at(self.samples_per_rev(), values),
+            Err(_) => Vec::new(),
         }
-        self.resample(|i| values[i], self.samples_per_rev())
+    }
+
+    /// The radii at `samples_per_rev` samples a revolution: on the grid of [`Self::uniform`]
+    /// made of this path with its [`UniformSignal::samples_per_rev`], [`Self::uniform_radii`]
+    /// without checking the path again (a pass over it) or finding M again (another).
+    pub fn radii_at(&self, samples_per_rev: usize) -> Vec<f64> {
+        self.values_at_by(samples_per_rev, |i| self.rho(i))
+    }
+
+    /// `values` (one per point) at `samples_per_rev` samples a revolution:
+    /// [`Self::uniform_values`] without the check, as [`Self::radii_at`]; empty when there is
+    /// not one value a point.
+    pub fn values_at(&self, samples_per_rev: usize, values: &[f64]) -> Vec<f64> {
+        match values.len() == self.len() {
+            true => self.values_at_by(samples_per_rev, |i| values[i]),
+            false => Vec::new(),
+        }
+    }
+
+    /// [`Self::resample`] where it has the two points and the positive rate it needs.
+    fn values_at_by(&self, samples_per_rev: usize, value: impl Fn(usize) -> f64) -> Vec<f64> {
+        match self.len() >= 2 && samples_per_rev > 0 {
+            true => self.resample(value, samples_per_rev),
+            false => Vec::new(),
+        }
     }
 
     /// The values `value(i)` of the points linearly interpolated at `m` samples per revolution
@@ -572,7 +598,7 @@ pub struct UniformSignal {
     /// Number of samples, whether or not the columns below are held.
     samples: usize,
     /// Z at the samples, mm (the dynamics let it go where they can make it again:
-    /// [`PathSignal::uniform_values`] of the path's heights).
+    /// [`PathSignal::values_at`] of the path's heights).
     pub z_mm: Vec<f64>,
     /// Radius at the samples, mm (the dynamics hand it to X's bandwidth figure).
     pub rho_mm: Vec<f64>,
@@ -590,13 +616,13 @@ impl UniformSignal {
     }
 
     /// The heights at the samples: [`Self::z_mm`], or where they were let go (left empty) made
-    /// again from `signal`, the path this grid was made from ([`PathSignal::uniform_values`]:
-    /// the same values to the bit).
+    /// again from `signal`, the path this grid was made from ([`PathSignal::values_at`]: the
+    /// same values to the bit).
     pub fn heights(&self, signal: &PathSignal) -> Cow<'_, [f64]> {
         if self.z_mm.len() == self.samples {
             Cow::Borrowed(&self.z_mm)
         } else {
-            Cow::Owned(signal.uniform_values(&signal.z_mm))
+            Cow::Owned(signal.values_at(self.samples_per_rev, &signal.z_mm))
         }
     }
 
@@ -979,6 +1005,16 @@ pub(crate) mod tests {
             );
         }
         assert!(s.uniform_values(&q[1..]).is_empty());
+        // At the grid's rate, unchecked: the same bits, radii and heights as the grid's own.
+        let m = u.samples_per_rev;
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&s.values_at(m, &q)), bits(&on_grid));
+        assert_eq!(bits(&s.values_at(m, &s.z_mm)), bits(&u.z_mm));
+        assert_eq!(bits(&s.radii_at(m)), bits(&u.rho_mm));
+        assert_eq!(bits(&s.uniform_radii()), bits(&u.rho_mm));
+        assert!(s.values_at(m, &q[1..]).is_empty());
+        assert!(PathSignal::default().radii_at(m).is_empty());
+        assert!(s.radii_at(0).is_empty());
     }
 
     #[test]

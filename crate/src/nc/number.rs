@@ -52,35 +52,46 @@ pub fn scaled(v: f64, decimals: u32) -> Option<i64> {
     Some(s)
 }
 
-/// Appends `units · 10^−decimals` with exactly `decimals` digits after the point: the text is
-/// built right to left in a stack buffer (the decimals, the point, the integer part, the sign)
-/// and appended in one copy.
+/// The most bytes [`push_scaled`] appends: a sign, 19 digits, the point and a leading zero,
+/// with room.
+const MAX_SCALED_LEN: usize = 24;
+
+/// Appends `units · 10^−decimals` with exactly `decimals` digits after the point: its length
+/// is counted first, then the text is built right to left (the decimals, the point, the integer
+/// part, the sign) in a window of fixed size appended to `buf` and cut to that length. A copy
+/// of a length known only at run time would be a library call for every word of a program.
 pub fn push_scaled(buf: &mut Vec<u8>, units: i64, decimals: u32) {
-    let mut tmp = [0u8; 24];
-    let mut i = tmp.len();
     let mut mag = units.unsigned_abs();
+    let whole = mag / POW10[decimals as usize] as u64;
+    let digits = whole.checked_ilog10().map_or(1, |l| l as usize + 1);
+    let len = usize::from(units < 0) + digits + usize::from(decimals > 0) + decimals as usize;
+    let start = buf.len();
+    buf.extend_from_slice(&[0; MAX_SCALED_LEN]);
+    let text = &mut buf[start..start + len];
+    let mut i = len;
     let mut fraction = decimals as usize;
     while fraction >= 2 {
         i -= 2;
-        put_pair(&mut tmp, i, mag % 100);
+        put_pair(text, i, mag % 100);
         mag /= 100;
         fraction -= 2;
     }
     if fraction == 1 {
         i -= 1;
-        tmp[i] = b'0' + (mag % 10) as u8;
+        text[i] = b'0' + (mag % 10) as u8;
         mag /= 10;
     }
     if decimals > 0 {
         i -= 1;
-        tmp[i] = b'.';
+        text[i] = b'.';
     }
-    i = put_digits(&mut tmp, i, mag);
+    i = put_digits(text, i, mag);
     if units < 0 {
         i -= 1;
-        tmp[i] = b'-';
+        text[i] = b'-';
     }
-    buf.extend_from_slice(&tmp[i..]);
+    debug_assert_eq!(i, 0, "the length counted is the text's");
+    buf.truncate(start + len);
 }
 
 /// Writes the two digits of `n` (< 100) at `tmp[i..i + 2]`.

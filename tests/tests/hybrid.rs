@@ -305,6 +305,14 @@ fn the_dynamics_of_a_constant_angle_path_hold_its_heights_alone_and_find_the_sam
     let mut indexed = PathSignal::for_spiral(planner.path().spiral(), points.len());
     points.iter().for_each(|p| indexed.push(p));
     assert!(indexed.is_indexed());
+    assert_eq!(
+        PathSignal::bytes_per_point(planner.path().spiral(), true),
+        8
+    );
+    assert_eq!(
+        PathSignal::bytes_per_point(planner.path().spiral(), false),
+        24
+    );
     for (i, p) in points.iter().enumerate() {
         let got = [indexed.theta(i), indexed.rho(i)].map(f64::to_bits);
         assert_eq!(got, [p.theta, p.rho].map(f64::to_bits), "point {i}");

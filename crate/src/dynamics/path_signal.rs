@@ -221,10 +221,14 @@ impl PathSignal {
     /// the spiral gives them by the index, 16 where a point's φ is held, 24 where its θ, ρ and
     /// z are.
     pub fn bytes_per_point(spiral: &Spiral, on_spiral: bool) -> u64 {
-        match (on_spiral, spiral.indexed_points(), spiral.walked_rule()) {
-            (true, Some(_), _) => 8,
-            (true, None, Some(_)) => 16,
-            _ => 24,
+        if !on_spiral {
+            return 24;
+        }
+        // As `for_spiral` decides, the one place that does.
+        match Self::for_spiral(spiral, 0).angles_radii {
+            AnglesRadii::Held { .. } => 24,
+            AnglesRadii::Indexed(_) => 8,
+            AnglesRadii::Walked { .. } => 16,
         }
     }
 
@@ -438,15 +442,6 @@ impl PathSignal {
         })
     }
 
-    /// The radii on the grid of [`Self::uniform`], the same to the bit; empty when the path
-    /// cannot be resampled.
-    pub fn uniform_radii(&self) -> Vec<f64> {
-        match self.check() {
-            Ok(()) => self.radii_at(self.samples_per_rev()),
-            Err(_) => Vec::new(),
-        }
-    }
-
     /// `values` (one per point) on the grid of [`Self::uniform`]; empty when the path cannot be
     /// resampled. The slide's share of a split path is analysed on the path's own grid this
     /// way, without a copy of the path.
@@ -457,9 +452,10 @@ impl PathSignal {
         }
     }
 
-    /// The radii at `samples_per_rev` samples a revolution: on the grid of [`Self::uniform`]
-    /// made of this path with its [`UniformSignal::samples_per_rev`], [`Self::uniform_radii`]
-    /// without checking the path again (a pass over it) or finding M again (another).
+    /// The radii at `samples_per_rev` samples a revolution: with the
+    /// [`UniformSignal::samples_per_rev`] of the grid [`Self::uniform`] made of this path, that
+    /// grid's radii to the bit, without checking the path again (a pass over it) or finding M
+    /// again (another).
     pub fn radii_at(&self, samples_per_rev: usize) -> Vec<f64> {
         self.values_at_by(samples_per_rev, |i| self.rho(i))
     }
@@ -1011,7 +1007,6 @@ pub(crate) mod tests {
         assert_eq!(bits(&s.values_at(m, &q)), bits(&on_grid));
         assert_eq!(bits(&s.values_at(m, &s.z_mm)), bits(&u.z_mm));
         assert_eq!(bits(&s.radii_at(m)), bits(&u.rho_mm));
-        assert_eq!(bits(&s.uniform_radii()), bits(&u.rho_mm));
         assert!(s.values_at(m, &q[1..]).is_empty());
         assert!(PathSignal::default().radii_at(m).is_empty());
         assert!(s.radii_at(0).is_empty());

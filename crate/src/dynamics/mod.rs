@@ -91,9 +91,10 @@ pub const MAX_POINTS: u64 = 30_000_000;
 /// At the peak the dynamics hold the path's columns (24 bytes a point: θ, ρ, z; z alone, 8,
 /// where the spiral gives θ and ρ by the index; z and the spiral's φ, 16, where it is walked by
 /// its step rule: [`PathSignal::for_spiral`]) and two records of
-/// the grid, 8 bytes a sample each, no more: the Hilbert transform in the record's memory beside
-/// the analytic signal's real part (made again) and each pair's band (2 bytes); the spectrum's
-/// and X's figure's records (the grid's heights and radii, made again); the low-pass's spectrum
+/// the grid, 8 bytes a sample each, no more: the grid's heights while the instantaneous
+/// frequency is found stretch by stretch (records of a stretch's length,
+/// [`spectrum::instantaneous_frequency`]); the spectrum's
+/// and X's figure's records (the grid's heights and its radii, made there); the low-pass's spectrum
 /// and one trial channel; a channel's bandwidth figure beside the slide's share. Every
 /// transform runs in its record's memory, every residual and amplitude spectrum too.
 pub const BYTES_PER_SAMPLE: u64 = 24;
@@ -525,13 +526,9 @@ impl Dynamics {
             let first = held.take();
             first.unwrap_or_else(|| signal.values_at(per_rev, &signal.z_mm))
         };
-        // The instantaneous frequency takes the grid's radii (each pair's band read off them);
-        // X's bandwidth figure has them made again.
-        let instantaneous_frequency = match uniform.as_mut() {
-            Ok(g) => {
-                let radii = std::mem::take(&mut g.rho_mm);
-                instantaneous_frequency_of(g, &heights, radii, rpm, FREQUENCY_BANDS)
-            }
+        // The instantaneous frequency, band by band on stretches of their own.
+        let instantaneous_frequency = match uniform {
+            Ok(_) => instantaneous_frequency_of(signal, rpm, FREQUENCY_BANDS),
             Err(_) => Vec::new(),
         };
         // The spectrum with Z's highest significant frequency read off it (cycles a

@@ -17,7 +17,9 @@
 //! between blocks under inverse-time feed), so the grid adds no error to the commanded motion; the
 //! commanded motion differs from the surface by the linearization error PVerr
 //! ([`crate::analysis::linearization`]) that the sampling already bounds. With constant-angle
-//! sampling the grid falls on the path points.
+//! sampling the grid falls on the path points. A [`Stretch`] of the path
+//! ([`PathSignal::stretch`]) is resampled the same way at the densest rate of its own turns:
+//! the samples of the whole path's grid at that rate which it spans, to the bit.
 //!
 //! **Memory.** A path is held as its columns θ, ρ and z, 24 bytes a point, except where its
 //! angles and radii are a function of the index (one-way compensation of a constant-angle
@@ -58,6 +60,7 @@
 use crate::path::{IndexedPoints, PathPoint, Spiral, WalkedRule};
 use std::borrow::Cow;
 use std::f64::consts::TAU;
+use std::ops::Range;
 use thiserror::Error;
 
 /// The smallest number of grid samples per revolution.
@@ -410,23 +413,75 @@ impl PathSignal {
     /// mean step), at least [`MIN_SAMPLES_PER_REV`], at most what keeps the grid within
     /// [`MAX_GRID_PER_POINT`] samples per path point.
     fn samples_per_rev(&self) -> usize {
+        self.samples_per_rev_of(0..self.len())
+    }
+
+    /// [`Self::samples_per_rev`] of the points `points` alone: the densest of their
+    /// revolutions (counted from the first point of the path, the last and first of them
+    /// partial), within [`MAX_GRID_PER_POINT`] samples a point of theirs over their angle.
+    fn samples_per_rev_of(&self, points: Range<usize>) -> usize {
         let mut densest = MIN_SAMPLES_PER_REV as f64;
-        let mut first = 0;
-        while first < self.len() {
+        let mut first = points.start;
+        while first < points.end {
             let rev = (self.angle(first) / TAU).floor();
-            let last = first_past(first, self.len(), |i| (self.angle(i) / TAU).floor() <= rev) - 1;
+            let last = first_past(first, points.end, |i| (self.angle(i) / TAU).floor() <= rev) - 1;
             let span = self.angle(last) - self.angle(first);
             if last > first && span > 0.0 {
                 densest = densest.max(TAU * (last - first) as f64 / span);
             }
             first = last + 1;
         }
-        let budget = (MAX_GRID_PER_POINT * self.len()).max(4096) as f64;
-        let cap = (budget * TAU / self.span_rad().max(f64::MIN_POSITIVE)).floor();
+        let budget = (MAX_GRID_PER_POINT * points.len()).max(4096) as f64;
+        let span = match points.len() {
+            0 => 0.0,
+            _ => self.angle(points.end - 1) - self.angle(points.start),
+        };
+        let cap = (budget * TAU / span.max(f64::MIN_POSITIVE)).floor();
         (densest - 1e-6)
             .ceil()
             .min(cap)
             .max(MIN_SAMPLES_PER_REV as f64) as usize
+    }
+
+    /// The stretch of the path from angle `from_rad` to `to_rad` (turned since the first
+    /// point) on a uniform grid of its own: the densest sampling of the points in it and of
+    /// one beyond either end (the rule of [`Self::uniform`]'s rate, on them alone), and the
+    /// samples of that grid from the last at or before `from_rad` to the first at or after
+    /// `to_rad`, within the path's span. A path that cannot be resampled (fewer than two
+    /// points) has an empty stretch.
+    pub fn stretch(&self, from_rad: f64, to_rad: f64) -> Stretch {
+        let n = self.columns().0.min(self.len());
+        if n < 2 {
+            return Stretch::default();
+        }
+        let first = first_past(0, n, |i| self.angle(i) < from_rad).saturating_sub(1);
+        let last = first_past(first, n, |i| self.angle(i) <= to_rad).min(n - 1);
+        let m = self.samples_per_rev_of(first..last + 1);
+        let step = TAU / m as f64;
+        let count = grid_count(self.span_rad(), step);
+        // The quotients rounded, then mended where a product falls on the wrong side.
+        let mut lo = ((from_rad / step).floor().max(0.0) as usize).min(count - 1);
+        if lo > 0 && lo as f64 * step > from_rad {
+            lo -= 1;
+        }
+        let mut hi = ((to_rad / step).ceil().max(0.0) as usize).clamp(lo, count - 1);
+        if hi + 1 < count && (hi as f64 * step) < to_rad {
+            hi += 1;
+        }
+        Stretch {
+            samples_per_rev: m,
+            first: lo,
+            len: hi - lo + 1,
+        }
+    }
+
+    /// `value(i)` of the points at the samples of `stretch` ([`Self::stretch`]): to the bit
+    /// what [`Self::values_at`] its rate gives at those samples.
+    pub fn stretch_values(&self, stretch: &Stretch, value: impl Fn(usize) -> f64) -> Vec<f64> {
+        match self.len() >= 2 && stretch.samples_per_rev > 0 {
+            true => self.resample_samples(value, stretch.samples_per_rev, stretch.samples()),
+            false => Vec::new(),
+        }
     }
 
     /// The path resampled at equal angle steps (see the module docs).
@@ -438,7 +493,6 @@ impl PathSignal {
             samples_per_rev: m,
             samples: z_mm.len(),
             z_mm,
-            rho_mm: self.resample(|i| self.rho(i), m),
         })
     }
 
@@ -481,14 +535,26 @@ impl PathSignal {
     /// The values `value(i)` of the points linearly interpolated at `m` samples per revolution
     /// from the first point.
     fn resample(&self, value: impl Fn(usize) -> f64, m: usize) -> Vec<f64> {
+        let count = grid_count(self.span_rad(), TAU / m as f64);
+        self.resample_samples(value, m, 0..count)
+    }
+
+    /// [`Self::resample`]'s samples `samples` alone, to the bit.
+    fn resample_samples(
+        &self,
+        value: impl Fn(usize) -> f64,
+        m: usize,
+        samples: Range<usize>,
+    ) -> Vec<f64> {
         let step = TAU / m as f64;
-        let count = ((self.span_rad() / step + 1e-6).floor() as usize + 1).max(2);
-        let mut out = Vec::with_capacity(count);
-        // The interval k … k + 1 with its ends' angles and values, read again only as k moves.
-        let mut k = 0;
-        let (mut a0, mut a1) = (self.angle(0), self.angle(1));
-        let (mut v0, mut v1) = (value(0), value(1));
-        for j in 0..count {
+        let mut out = Vec::with_capacity(samples.len());
+        // The interval k … k + 1 with its ends' angles and values, read again only as k moves:
+        // for the first sample, the interval the walk from the first point would stop at.
+        let start = samples.start as f64 * step;
+        let mut k = (first_past(1, self.len(), |i| self.angle(i) < start) - 1).min(self.len() - 2);
+        let (mut a0, mut a1) = (self.angle(k), self.angle(k + 1));
+        let (mut v0, mut v1) = (value(k), value(k + 1));
+        for j in samples {
             let phi = j as f64 * step;
             while k + 2 < self.len() && a1 < phi {
                 k += 1;
@@ -534,6 +600,42 @@ impl PathSignal {
             prev = Some((s, da));
         }
         e
+    }
+}
+
+/// The samples of a grid of angle step `step` from 0 over `span_rad`: every step within it
+/// (a millionth of a step of slack), at least two.
+fn grid_count(span_rad: f64, step: f64) -> usize {
+    ((span_rad / step + 1e-6).floor() as usize + 1).max(2)
+}
+
+/// A stretch of a path on a uniform grid of its own ([`PathSignal::stretch`]): the samples
+/// `first … first + len − 1` of the path's grid at `samples_per_rev`, sample j at
+/// `φ_j = j·2π/samples_per_rev` from the first point.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Stretch {
+    /// Samples per revolution M.
+    pub samples_per_rev: usize,
+    /// The first sample's number on the path's grid at M.
+    pub first: usize,
+    /// Number of samples.
+    pub len: usize,
+}
+
+impl Stretch {
+    /// The samples' numbers on the path's grid at M.
+    pub fn samples(&self) -> Range<usize> {
+        self.first..self.first + self.len
+    }
+
+    /// The samples of a grid of the stretch's rate as [`UniformSignal`] (no columns held): its
+    /// symmetric part and the like are computed as for a whole path's grid.
+    pub fn grid(&self) -> UniformSignal {
+        UniformSignal {
+            samples_per_rev: self.samples_per_rev,
+            samples: self.len,
+            z_mm: Vec::new(),
+        }
     }
 }
 
@@ -594,10 +696,9 @@ pub struct UniformSignal {
     /// Number of samples, whether or not the columns below are held.
     samples: usize,
     /// Z at the samples, mm (the dynamics let it go where they can make it again:
-    /// [`PathSignal::values_at`] of the path's heights).
+    /// [`PathSignal::values_at`] of the path's heights). The radii are made where they are
+    /// used ([`PathSignal::radii_at`]).
     pub z_mm: Vec<f64>,
-    /// Radius at the samples, mm (the dynamics hand it to X's bandwidth figure).
-    pub rho_mm: Vec<f64>,
 }
 
 impl UniformSignal {
@@ -895,6 +996,102 @@ pub(crate) mod tests {
         PathSignal::from_columns(theta, radius, height)
     }
 
+    /// A spiral of `revs` revolutions from radius `r0` inward by `feed` a revolution at a
+    /// constant arc step `arc` (the points of a revolution falling with its radius, at least
+    /// 16), with height `z(ρ, θ)`.
+    pub(crate) fn arc_spiral(
+        revs: f64,
+        r0: f64,
+        feed: f64,
+        arc: f64,
+        z: impl Fn(f64, f64) -> f64,
+    ) -> PathSignal {
+        let (mut theta, mut radius, mut height) = (Vec::new(), Vec::new(), Vec::new());
+        let mut phi = 0.0;
+        while phi <= revs * TAU {
+            let rho = r0 - feed * phi / TAU;
+            theta.push(phi);
+            radius.push(rho);
+            height.push(z(rho, phi));
+            phi += (arc / rho).min(TAU / 16.0);
+        }
+        PathSignal::from_columns(theta, radius, height)
+    }
+
+    #[test]
+    fn a_stretch_is_its_rates_grid_to_the_bit() {
+        // A constant-arc spiral (2094 points on its outer turn, 523 on its inner) and a
+        // constant-angle one: a stretch's samples are those of the whole grid at its rate, its
+        // rate that of its own densest turn (and of the points just beyond it), and it covers
+        // the angles asked for.
+        let z = |r: f64, t: f64| 1e-3 * (5.0 * t).sin() + 0.01 * r * r;
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        for s in [
+            arc_spiral(60.0, 4.0, 0.05, 0.012, z),
+            spiral(20.0, 300, 2.0, 0.05, z),
+        ] {
+            let whole = s.samples_per_rev();
+            let span = s.span_rad();
+            for (a, b) in [(-0.01, 0.03), (0.3, 0.45), (0.8, 0.95), (-0.1, 2.0)] {
+                let (from, to) = (a * span, b * span);
+                let st = s.stretch(from, to);
+                let m = st.samples_per_rev;
+                let step = TAU / m as f64;
+                let grid = s.values_at(m, &s.z_mm);
+                assert_eq!(
+                    bits(&s.stretch_values(&st, |i| s.z_mm[i])),
+                    bits(&grid[st.samples()])
+                );
+                let radii = s.radii_at(m);
+                assert_eq!(
+                    bits(&s.stretch_values(&st, |i| s.rho(i))),
+                    bits(&radii[st.samples()])
+                );
+                let (lo, hi) = (
+                    st.first as f64 * step,
+                    (st.first + st.len - 1) as f64 * step,
+                );
+                assert!(
+                    lo <= from.max(0.0) && (hi >= to || st.samples().end == grid.len()),
+                    "{lo} {hi} {from} {to} {st:?} {}",
+                    grid.len()
+                );
+                // At least as many samples a turn as any whole turn within the stretch has
+                // points (less one), no more than the closest pair of points there would ask.
+                let inside = |i: &usize| s.angle(*i) >= from - TAU && s.angle(*i) <= to + TAU;
+                let mut turns = std::collections::BTreeMap::new();
+                for i in (0..s.len()).filter(inside) {
+                    *turns
+                        .entry((s.angle(i) / TAU).floor() as i64)
+                        .or_insert(0usize) += 1;
+                }
+                let whole_turns = turns.iter().filter(|(t, _)| {
+                    (**t as f64) * TAU >= from.max(0.0) && (**t + 1) as f64 * TAU <= to
+                });
+                let most = whole_turns.map(|(_, c)| *c).max().unwrap_or(0);
+                let closest = (1..s.len())
+                    .filter(inside)
+                    .map(|i| TAU / (s.angle(i) - s.angle(i - 1)))
+                    .fold(0.0, f64::max);
+                assert!(
+                    m + 1 >= most && m as f64 <= closest + 1.0,
+                    "{from}..{to}: {m}, {most}, {closest}, {whole}"
+                );
+            }
+            if s.span_rad() > 100.0 * TAU / 2.0 {
+                // At constant arc a turn has 2πρ/ΔS points: the stretch of turns 55–60 (with
+                // its margin from turn 54, ρ = 1.3 mm) is sampled at that rate, not at the
+                // rim's.
+                let inner = s.stretch(55.0 * TAU, 60.0 * TAU).samples_per_rev;
+                assert!(
+                    inner as f64 <= TAU * 1.3 / 0.012 + 1.0,
+                    "{inner} against {whole}"
+                );
+                assert!(whole as f64 >= TAU * 3.95 / 0.012, "{whole}");
+            }
+        }
+    }
+
     #[test]
     fn an_indexed_signal_holds_the_columns_from_the_first_point_off_its_spiral() {
         use crate::job::{Direction, Sampling};
@@ -1006,7 +1203,8 @@ pub(crate) mod tests {
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&s.values_at(m, &q)), bits(&on_grid));
         assert_eq!(bits(&s.values_at(m, &s.z_mm)), bits(&u.z_mm));
-        assert_eq!(bits(&s.radii_at(m)), bits(&u.rho_mm));
+        let radii = s.values_at(m, &(0..s.len()).map(|i| s.rho(i)).collect::<Vec<_>>());
+        assert_eq!(bits(&s.radii_at(m)), bits(&radii));
         assert!(s.values_at(m, &q[1..]).is_empty());
         assert!(PathSignal::default().radii_at(m).is_empty());
         assert!(s.radii_at(0).is_empty());
@@ -1053,7 +1251,6 @@ pub(crate) mod tests {
                 samples_per_rev: m,
                 samples: 0,
                 z_mm: Vec::new(),
-                rho_mm: Vec::new(),
             };
             for n in [2 * m - 1, 2 * m, 5 * m + 3, 40 * m + 1] {
                 let values: Vec<f64> = (0..n)
@@ -1122,9 +1319,10 @@ pub(crate) mod tests {
         });
         let u = s.uniform().unwrap();
         let sym = u.symmetric_part(&u.z_mm);
+        let radii = s.radii_at(u.samples_per_rev);
         let smoothing = 2.0 * 0.1f64.powi(2) * (1.0 - 1.0 / 64f64.powi(2)) / 12.0;
         for (j, v) in sym.iter().enumerate() {
-            let want = sag(u.rho_mm[j]) + smoothing;
+            let want = sag(radii[j]) + smoothing;
             // Running sums of 385 values below 10: rounding far below 1e-12.
             assert!((v - want).abs() < 1e-12, "sample {j}: {v} vs {want}");
         }

@@ -443,12 +443,21 @@ fn the_dynamics_memory_goes_with_the_samples_of_their_grid() {
         "{samples} against {grid}"
     );
     let held = cost.dynamics_memory_bytes.unwrap();
-    // The path's heights and each point's φ on its spiral (one-way compensation).
+    // The path's heights and each point's φ on its spiral (one-way compensation), and the
+    // low-pass's records of the automatic split: the grid extended by 16 turns at either end
+    // at the grid's rate.
     let columns = 16 * cost.points;
-    let per_sample = spiralcam::dynamics::bytes_per_sample(samples) as f64;
+    let turns = planner.spiral().revolutions();
+    let records = spiralcam::dynamics::record_samples(samples, turns, true);
+    let per_rev = (grid - 1.0) / turns;
+    assert!(
+        ((records - samples) / (32.0 * per_rev) - 1.0).abs() < 0.02,
+        "{records} {samples} {per_rev}"
+    );
+    let per_sample = spiralcam::dynamics::bytes_per_sample(records) as f64;
     let grid_bytes = (held - columns) as f64;
     assert!(
-        grid_bytes >= per_sample * (samples - 1.0) && grid_bytes <= per_sample * samples,
+        grid_bytes >= per_sample * (records - 1.0) && grid_bytes <= per_sample * records,
         "{cost:?}"
     );
     // A bound between the points' share and the whole: refused on the grid.
@@ -473,6 +482,31 @@ fn the_dynamics_memory_goes_with_the_samples_of_their_grid() {
         ..Limits::default()
     };
     roomy.check(&cost, outputs, feed).unwrap();
+}
+
+/// On a path of few turns the low-pass's records, the grid extended by 16 turns at either
+/// end, outweigh the grid: 4 turns of 512 points are 2 049 samples on the grid and 18 433 in
+/// each of the low-pass's records, and the estimate holds them (it held the grid alone, a
+/// ninth of them, before).
+#[test]
+fn the_dynamics_memory_counts_the_low_pass_records_on_a_path_of_few_turns() {
+    let mut job = coarse_grid_fts();
+    job.strategy.feed_mm_per_rev = 1.0;
+    let cost = Planner::new(&job).unwrap().cost(None).unwrap();
+    let grid = cost.dynamics_samples.unwrap() as f64;
+    assert_eq!(grid, 4.0 * 512.0 + 1.0);
+    let records = grid + 32.0 * 512.0;
+    let per_sample = spiralcam::dynamics::bytes_per_sample(records);
+    let held = cost.dynamics_memory_bytes.unwrap();
+    assert_eq!(held, 8 * cost.points + per_sample * records as u64);
+    // Without a low-pass (the symmetric split) the grid alone.
+    job.strategy.split = Some(spiralcam::job::SplitSpec::Symmetric);
+    let cost = Planner::new(&job).unwrap().cost(None).unwrap();
+    let per_sample = spiralcam::dynamics::bytes_per_sample(grid);
+    assert_eq!(
+        cost.dynamics_memory_bytes.unwrap(),
+        8 * cost.points + per_sample * grid as u64
+    );
 }
 
 /// The dynamics' grid as the estimate counts it ([`grid_samples`]) against the grid they

@@ -91,9 +91,9 @@ pub const MAX_POINTS: u64 = 30_000_000;
 /// At the peak the dynamics hold the path's columns (24 bytes a point: θ, ρ, z; z alone, 8,
 /// where the spiral gives θ and ρ by the index; z and the spiral's φ, 16, where it is walked by
 /// its step rule: [`PathSignal::for_spiral`]) and two records of
-/// the grid, 8 bytes a sample each, no more: the grid's heights while the instantaneous
-/// frequency is found stretch by stretch (records of a stretch's length,
-/// [`spectrum::instantaneous_frequency`]); the spectrum's
+/// the grid, 8 bytes a sample each, no more (the instantaneous frequency comes first, stretch
+/// by stretch in records of a stretch's length, [`spectrum::instantaneous_frequency`]): the
+/// spectrum's
 /// and X's figure's records (the grid's heights and its radii, made there); the low-pass's spectrum
 /// and one trial channel; a channel's bandwidth figure beside the slide's share. Every
 /// transform runs in its record's memory, every residual and amplitude spectrum too.
@@ -127,8 +127,8 @@ pub fn bytes_per_sample(samples: f64) -> u64 {
     }
 }
 
-/// The dynamics' peak memory, bytes, for a path of `points` points whose uniform grid has
-/// `samples` samples ([`grid_samples`]): the path's columns, `bytes_per_point` a point (24, or
+/// The dynamics' peak memory, bytes, for a path of `points` points whose longest records have
+/// `samples` samples ([`record_samples`] of its [`grid_samples`]): the path's columns, `bytes_per_point` a point (24, or
 /// 8 or 16 where the spiral gives the angles and radii: [`PathSignal::bytes_per_point`]), and
 /// [`bytes_per_sample`] a sample of the grid, at least one a point.
 pub fn memory_bytes(points: u64, samples: f64, bytes_per_point: u64) -> u64 {
@@ -204,6 +204,20 @@ pub fn grid_samples(points: u64, revolutions: f64, densest_per_rev: f64) -> f64 
         .max(path_signal::MIN_SAMPLES_PER_REV as f64);
     let budget = (path_signal::MAX_GRID_PER_POINT as f64 * n).max(4096.0);
     (per_rev * revolutions + 1.0).min(budget).max(n)
+}
+
+/// The samples of the dynamics' longest records for a uniform grid of `samples` samples over
+/// `revolutions` turns: the grid's, or with a low-pass split (`low_pass`: `low_pass` or `auto`)
+/// the low-pass's record, the grid extended by [`split::EXTENSION_REVS`] revolutions at either
+/// end. The low-pass holds two records that long (its spectrum and a trial channel), so the
+/// extension dominates on a path of few turns: 10 turns of 10⁶ points were 10 M samples on the
+/// grid and 42 M in the low-pass's records (0.78 GB of peak resident set).
+pub fn record_samples(samples: f64, revolutions: f64, low_pass: bool) -> f64 {
+    if !low_pass || revolutions.is_nan() || revolutions <= 0.0 {
+        return samples;
+    }
+    let per_rev = (samples - 1.0).max(0.0) / revolutions;
+    samples + (2 * split::EXTENSION_REVS) as f64 * per_rev
 }
 
 /// Radius bands of the instantaneous frequency.
@@ -515,21 +529,23 @@ impl Dynamics {
     fn of_signal(job: &Job, signal: &PathSignal) -> Result<Self, SplitError> {
         let machine = &job.machine;
         let rpm = machine.spindle_rpm;
+        // The instantaneous frequency first, band by band on stretches of their own, before
+        // the grid's heights are held.
+        let checked = signal.check();
+        let instantaneous_frequency = match checked {
+            Ok(()) => instantaneous_frequency_of(signal, rpm, FREQUENCY_BANDS),
+            Err(_) => Vec::new(),
+        };
         // The path on its uniform grid, resampled once for every analysis below. The grid's
         // heights are handed to the first analysis that takes them and made again for the
         // others ([`PathSignal::values_at`] the grid's rate, to the bit), not held beside the
         // transforms.
-        let mut uniform = signal.uniform();
+        let mut uniform = checked.map(|()| signal.uniform_checked());
         let per_rev = uniform.as_ref().map_or(0, |g| g.samples_per_rev);
         let held = Cell::new(uniform.as_mut().ok().map(|g| std::mem::take(&mut g.z_mm)));
         let heights = || {
             let first = held.take();
             first.unwrap_or_else(|| signal.values_at(per_rev, &signal.z_mm))
-        };
-        // The instantaneous frequency, band by band on stretches of their own.
-        let instantaneous_frequency = match uniform {
-            Ok(_) => instantaneous_frequency_of(signal, rpm, FREQUENCY_BANDS),
-            Err(_) => Vec::new(),
         };
         // The spectrum with Z's highest significant frequency read off it (cycles a
         // revolution), and X's bandwidth figure of the grid's radii: two transforms of one

@@ -487,13 +487,18 @@ impl PathSignal {
     /// The path resampled at equal angle steps (see the module docs).
     pub fn uniform(&self) -> Result<UniformSignal, SignalError> {
         self.check()?;
+        Ok(self.uniform_checked())
+    }
+
+    /// [`Self::uniform`] of a path already checked ([`Self::check`]).
+    pub(crate) fn uniform_checked(&self) -> UniformSignal {
         let m = self.samples_per_rev();
         let z_mm = self.resample(|i| self.z_mm[i], m);
-        Ok(UniformSignal {
+        UniformSignal {
             samples_per_rev: m,
             samples: z_mm.len(),
             z_mm,
-        })
+        }
     }
 
     /// `values` (one per point) on the grid of [`Self::uniform`]; empty when the path cannot be

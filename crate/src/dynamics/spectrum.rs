@@ -648,11 +648,16 @@ fn stretch_frequencies(
 ) -> Vec<BandFrequency> {
     let (grid, m) = (stretch.grid(), stretch.samples_per_rev);
     let skip = if stretch.len >= 3 * m { m } else { 0 };
+    // Each pair's band (2 bytes a pair), read off the radii before the records are made.
+    let radii = signal.stretch_values(&stretch, |i| signal.rho(i));
+    let band: Vec<u16> = (radii.windows(2))
+        .map(|r| bands.of_radius(0.5 * (r[0] + r[1])) as u16)
+        .collect();
+    drop(radii);
+    let band_of = |j: usize| band[j] as usize;
     let mut re = residual_of(&grid, signal.stretch_values(&stretch, |i| signal.z_mm[i]));
     roll_off(&mut re, skip);
     let im = hilbert_by(forward_plan(analytic_length(re.len(), skip)), re.clone());
-    let radii = signal.stretch_values(&stretch, |i| signal.rho(i));
-    let band_of = |j: usize| bands.of_radius(0.5 * (radii[j] + radii[j + 1]));
     // Each band's first and last pair between the roll-offs.
     let mut reach = vec![(usize::MAX, 0); bands.count];
     for j in skip..re.len().saturating_sub(1 + skip) {

@@ -26,7 +26,7 @@ use super::{PlanError, Planner};
 use crate::dynamics;
 use crate::dynamics::path_signal::PathSignal;
 use crate::field::{FieldError, feed_within, short};
-use crate::job::Compensation;
+use crate::job::{Compensation, SplitSpec};
 use crate::nc::{CsvWriter, FtsTableWriter, NcWriter};
 use crate::parallel::workers;
 use crate::path::MAX_POINTS;
@@ -140,6 +140,10 @@ impl Planner {
         let bytes_per_point = PathSignal::bytes_per_point(self.spiral(), on_spiral);
         let seconds = seconds.map(|s| s + dynamics_seconds.unwrap_or(0.0));
         let split = self.job().strategy.split.is_some();
+        let low_pass = matches!(
+            self.job().strategy.split,
+            Some(SplitSpec::LowPass { .. } | SplitSpec::Auto)
+        );
         let n = path_points as f64;
         Ok(Cost {
             points,
@@ -149,8 +153,10 @@ impl Planner {
             fts_table_bytes: split
                 .then(|| crate::nc::fts_table::HEADER.len() as u64 + (w.fts_row * n) as u64),
             dynamics_samples: samples.map(|s| s as u64),
-            dynamics_memory_bytes: samples
-                .map(|s| dynamics::memory_bytes(path_points, s, bytes_per_point)),
+            dynamics_memory_bytes: samples.map(|s| {
+                let records = dynamics::record_samples(s, self.spiral().revolutions(), low_pass);
+                dynamics::memory_bytes(path_points, records, bytes_per_point)
+            }),
             fts_grid_bytes: split
                 .then(|| crate::nc::fts_grid::max_bytes(dynamics::fts_grid::MAX_ENTRIES)),
             seconds,
@@ -319,7 +325,9 @@ impl Limits {
                 ),
             ));
         }
-        // Their memory goes with the samples of their grid too (both go as 1/f).
+        // Their memory goes with the samples of their grid too (both go as 1/f; the
+        // low-pass's extension, 2·16 turns at the grid's rate, does not, so on a path of a few
+        // turns the feed named may still be refused, with a larger one named then).
         let held = cost.dynamics_memory_bytes.filter(|_| cost.passes == 2);
         if let (Some(max), Some(held)) = (limits.max_dynamics_bytes, held)
             && held > max

@@ -90,13 +90,13 @@ pub const MAX_POINTS: u64 = 30_000_000;
 ///
 /// At the peak the dynamics hold the path's columns (24 bytes a point: θ, ρ, z; z alone, 8,
 /// where the spiral gives θ and ρ by the index; z and the spiral's φ, 16, where it is walked by
-/// its step rule: [`PathSignal::for_spiral`]) and two records of
-/// the grid, 8 bytes a sample each, no more (the instantaneous frequency comes first, stretch
-/// by stretch in records of a stretch's length, [`spectrum::instantaneous_frequency`]): the
-/// spectrum's
-/// and X's figure's records (the grid's heights and its radii, made there); the low-pass's spectrum
-/// and one trial channel; a channel's bandwidth figure beside the slide's share. Every
-/// transform runs in its record's memory, every residual and amplitude spectrum too.
+/// its step rule: [`PathSignal::for_spiral`]) and two records of the grid, 8 bytes a sample
+/// each, no more (the instantaneous frequency comes first, stretch by stretch in records of a
+/// stretch's length, [`spectrum::instantaneous_frequency`]): the spectrum's and X's figure's
+/// records (the grid's heights and its radii, made there); the low-pass's spectrum and one
+/// trial channel (both of the grid extended by [`split::EXTENSION_REVS`] turns at either end:
+/// [`record_samples`]); a channel's bandwidth figure beside the slide's share. Every transform
+/// runs in its record's memory, every residual and amplitude spectrum too.
 pub const BYTES_PER_SAMPLE: u64 = 24;
 
 /// [`BYTES_PER_SAMPLE`] for a grid of at most [`MID_GRID_SAMPLES`] samples, whose records (at
@@ -128,9 +128,10 @@ pub fn bytes_per_sample(samples: f64) -> u64 {
 }
 
 /// The dynamics' peak memory, bytes, for a path of `points` points whose longest records have
-/// `samples` samples ([`record_samples`] of its [`grid_samples`]): the path's columns, `bytes_per_point` a point (24, or
-/// 8 or 16 where the spiral gives the angles and radii: [`PathSignal::bytes_per_point`]), and
-/// [`bytes_per_sample`] a sample of the grid, at least one a point.
+/// `samples` samples ([`record_samples`] of its [`grid_samples`]): the path's columns,
+/// `bytes_per_point` a point (24, or 8 or 16 where the spiral gives the angles and radii:
+/// [`PathSignal::bytes_per_point`]), and [`bytes_per_sample`] a sample of those records, at
+/// least one a point.
 pub fn memory_bytes(points: u64, samples: f64, bytes_per_point: u64) -> u64 {
     let samples = samples.max(points as f64);
     points.saturating_mul(bytes_per_point) + (samples * bytes_per_sample(samples) as f64) as u64

@@ -1084,8 +1084,8 @@ pub(crate) mod tests {
                 );
             }
             if s.span_rad() > 100.0 * TAU / 2.0 {
-                // At constant arc a turn has 2πρ/ΔS points: the stretch of turns 55–60 (with
-                // its margin from turn 54, ρ = 1.3 mm) is sampled at that rate, not at the
+                // At constant arc a turn has 2πρ/ΔS points: the stretch of turns 55–60, from
+                // ρ = 1.25 mm inward, is sampled at most at the rate of ρ = 1.3 mm, not at the
                 // rim's.
                 let inner = s.stretch(55.0 * TAU, 60.0 * TAU).samples_per_rev;
                 assert!(

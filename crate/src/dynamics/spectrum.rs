@@ -41,18 +41,7 @@
 //! [`PAD_TAPERS`] as many zeros (two revolutions), to a length `2^a·3^b` ([`fast_length`]; the
 //! FFT then joins the rim to the centre only through the zeros), and those two revolutions are
 //! left out of the band figures (on records of three revolutions or more; shorter ones, not
-//! rolled off, are padded with as many zeros as they have samples).
-//!
-//! **Stretches.** The record is not the whole path: consecutive radius bands are taken together
-//! until their points span [`MIN_STRETCH_REVS`] revolutions (the whole path where it is
-//! shorter), and each such stretch, with a revolution more on either side for the roll-off, is
-//! resampled at its own densest turn's rate ([`PathSignal::stretch`]) and analysed alone, on
-//! the next free core. A constant-arc or HCAA path has its inner turns sampled at their own
-//! rate, not at the rim's (about half the samples over the path, and records of a stretch's
-//! length, not the path's: the dynamics' memory). A stretch's roll-off lies a revolution
-//! outside its bands, as the whole record's does at its ends: a tone's figures stay within
-//! 1e-9 (medians) and 1e-6 (95th percentiles) of its frequency, and a sine grid's within 5e-3
-//! of the whole record's (`each_bands_stretch_gives_the_whole_records_figures`). Padding every record so,
+//! rolled off, are padded with as many zeros as they have samples). Padding every record so,
 //! as this module once did, left a tone's band medians where they were to 3.5e-8 (the roll-off's
 //! own effect) and moved the 1 M-point sine grid's band figures by at most 8e-6 relative, at
 //! twice the transform's memory, the dynamics' peak. The frequency between samples j
@@ -64,6 +53,17 @@
 //! instantaneous frequency `(2πρ/λ)·|sin θ|` cycles/rev: its median over a revolution is
 //! `sin(π/4)·2πρ/λ`, its 95th percentile `sin(0.95·π/2)·2πρ/λ`.
 //!
+//! **Stretches.** The record is not the whole path: consecutive radius bands are taken together
+//! until their points span [`MIN_STRETCH_REVS`] revolutions (the whole path where it is
+//! shorter), and each such stretch, with a revolution more on either side for the roll-off, is
+//! resampled at its own densest turn's rate ([`PathSignal::stretch`]) and analysed alone, on
+//! the next free core. A constant-arc or HCAA path has its inner turns sampled at their own
+//! rate, not at the rim's (about half the samples over the path, and records of a stretch's
+//! length, not the path's: the dynamics' memory). A stretch's roll-off lies a revolution
+//! outside its bands, as the whole record's does at its ends: a tone's figures stay within
+//! 1e-9 (medians) and 1e-6 (95th percentiles) of its frequency, and a sine grid's within 5e-3
+//! of the whole record's (`each_bands_stretch_gives_the_whole_records_figures`).
+//!
 //! **Transforms.** Every record here is real, so every transform is a real-input one
 //! ([`crate::dynamics::real_transform`]: a record of even length L goes through a complex
 //! transform of L/2 and one pass of twiddles), which keeps bins 0 … L/2 only, the others being
@@ -71,8 +71,8 @@
 //! [`crate::dynamics::real_transform::IN_PLACE_FROM`] samples) is transformed in its own memory,
 //! 8 bytes a sample, with tables of about √L entries; a short one by `realfft` (16 bytes a sample
 //! with its output, and a plan of 12 whose making costs about as much as running it: records of
-//! one length share a plan ([`amplitude_spectrum_and_bands_on`]) and a plan is made on a second
-//! core while its record is prepared; the plans are deterministic, so the results are the same
+//! one length share a plan ([`amplitude_spectrum_and_bands_on`]) and, in the spectrum and
+//! the bandwidth figures, a plan is made on a second core while its record is prepared; the plans are deterministic, so the results are the same
 //! to the bit).
 
 use crate::dynamics::path_signal::{PathSignal, Stretch, UniformSignal, hz, residual_gain};

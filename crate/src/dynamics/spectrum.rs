@@ -72,8 +72,8 @@
 //! 8 bytes a sample, with tables of about √L entries; a short one by `realfft` (16 bytes a sample
 //! with its output, and a plan of 12 whose making costs about as much as running it: records of
 //! one length share a plan ([`amplitude_spectrum_and_bands_on`]) and, in the spectrum and
-//! the bandwidth figures, a plan is made on a second core while its record is prepared; the plans are deterministic, so the results are the same
-//! to the bit).
+//! the bandwidth figures, a plan is made on a second core while its record is prepared; the
+//! plans are deterministic, so the results are the same to the bit).
 
 use crate::dynamics::path_signal::{PathSignal, Stretch, UniformSignal, hz, residual_gain};
 use crate::dynamics::real_transform::{RealForward, RealInverse, real_values_of};
@@ -604,30 +604,28 @@ impl RadiusBands {
             *r = (r.0.min(i), i);
         }
         let angle = |i: usize| signal.angle(i.min(n - 1));
-        let mut out: Vec<(Vec<usize>, usize, usize)> = Vec::new();
+        // A stretch's bands and its first and last point.
+        type Gathered = (Vec<usize>, usize, usize);
+        let short = |s: &Gathered| angle(s.2) - angle(s.1) < MIN_STRETCH_REVS * TAU;
+        let join = |s: &mut Gathered, members: &[usize], lo: usize, hi: usize| {
+            s.0.extend_from_slice(members);
+            (s.1, s.2) = (s.1.min(lo), s.2.max(hi));
+        };
+        let mut out: Vec<Gathered> = Vec::new();
         for (b, (first, last)) in reach.into_iter().enumerate() {
             if first == usize::MAX {
                 continue;
             }
             let (first, last) = (first.saturating_sub(1), last + 1);
             match out.last_mut() {
-                Some((members, lo, hi)) if angle(*hi) - angle(*lo) < MIN_STRETCH_REVS * TAU => {
-                    members.push(b);
-                    (*lo, *hi) = ((*lo).min(first), (*hi).max(last));
-                }
+                Some(s) if short(s) => join(s, &[b], first, last),
                 _ => out.push((vec![b], first, last)),
             }
         }
         // A short last stretch joins the one before.
-        if out.len() >= 2 {
-            let (members, lo, hi) = &out[out.len() - 1];
-            if angle(*hi) - angle(*lo) < MIN_STRETCH_REVS * TAU {
-                let (members, lo, hi) = (members.clone(), *lo, *hi);
-                out.pop();
-                let before = out.last_mut().expect("two stretches");
-                before.0.extend(members);
-                (before.1, before.2) = (before.1.min(lo), before.2.max(hi));
-            }
+        if out.len() >= 2 && out.last().is_some_and(short) {
+            let (members, lo, hi) = out.pop().expect("two stretches");
+            join(out.last_mut().expect("one left"), &members, lo, hi);
         }
         out.into_iter()
             .map(|(members, lo, hi)| (members, angle(lo) - TAU, angle(hi) + TAU))

@@ -64,6 +64,18 @@ where
     })
 }
 
+/// `value(i)` for every `i` in `0..n`, computed in contiguous parts on [`workers`] threads.
+pub fn map_indices(n: usize, value: impl Fn(usize) -> f64 + Sync) -> Vec<f64> {
+    let mut out = vec![0.0; n];
+    let Ok(()) = fill_chunks(&mut out, |first, part| {
+        (first..)
+            .zip(part.iter_mut())
+            .for_each(|(i, v)| *v = value(i));
+        Ok::<(), std::convert::Infallible>(())
+    });
+    out
+}
+
 /// Fills `out[k]` with `make(k)` on [`workers`] threads, each taking the next item as it
 /// finishes one (for items of uneven cost, which contiguous chunks would leave to one thread);
 /// serially where there is one worker or one item. The first error in item order wins.

@@ -91,12 +91,14 @@ pub const MAX_POINTS: u64 = 30_000_000;
 /// At the peak the dynamics hold the path's columns (24 bytes a point: θ, ρ, z; z alone, 8,
 /// where the spiral gives θ and ρ by the index; z and the spiral's φ, 16, where it is walked by
 /// its step rule: [`PathSignal::for_spiral`]) and two records of the grid, 8 bytes a sample
-/// each, no more (the instantaneous frequency comes first, stretch by stretch in records of a
-/// stretch's length, [`spectrum::instantaneous_frequency`]): the spectrum's and X's figure's
-/// records (the grid's heights and its radii, made there); the low-pass's spectrum and one
-/// trial channel (both of the grid extended by [`split::EXTENSION_REVS`] turns at either end:
-/// [`record_samples`]); a channel's bandwidth figure beside the slide's share. Every transform
-/// runs in its record's memory, every residual and amplitude spectrum too.
+/// each, no more: the low-pass's spectrum and one trial channel (both of the grid extended by
+/// [`split::EXTENSION_REVS`] turns at either end: [`record_samples`]). The other stages hold
+/// one record beside the path's columns and the slide's share at the points: the
+/// instantaneous frequency comes first, stretch by stretch in records of a stretch's length
+/// ([`spectrum::instantaneous_frequency`]); the spectrum and X's figure take the grid's heights
+/// and then its radii, one after the other; the low-pass extends the heights in their memory;
+/// the servo's figure takes the slide's channel on the grid, made `z − Z` in its memory. Every
+/// transform runs in its record's memory, every residual and amplitude spectrum too.
 pub const BYTES_PER_SAMPLE: u64 = 24;
 
 /// [`BYTES_PER_SAMPLE`] for a grid of at most [`MID_GRID_SAMPLES`] samples, whose records (at
@@ -549,13 +551,13 @@ impl Dynamics {
             first.unwrap_or_else(|| signal.values_at(per_rev, &signal.z_mm))
         };
         // The spectrum with Z's highest significant frequency read off it (cycles a
-        // revolution), and X's bandwidth figure of the grid's radii: two transforms of one
-        // length on the two cores.
+        // revolution), and X's bandwidth figure of the grid's radii, made once the spectrum
+        // has let its record go: one transform of their length for both.
         let (spectrum, z_band_cpr, x_needed_hz) = match uniform.as_ref() {
             Ok(g) => {
-                let (heights, radii) = (heights(), signal.radii_at(per_rev));
+                let radii = || signal.radii_at(per_rev);
                 let (s, z_band, x_band) =
-                    amplitude_spectrum_and_bands_on(g, heights, radii, rpm, SPECTRUM_BINS);
+                    amplitude_spectrum_and_bands_on(g, heights(), radii, rpm, SPECTRUM_BINS);
                 (s, z_band, Some(hz(x_band, rpm)))
             }
             Err(_) => (Spectrum::default(), None, None),

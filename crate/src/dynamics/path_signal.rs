@@ -57,8 +57,10 @@
 //! `1 − T(ν)`, `T(ν) = (sin πν / (M·sin(πν/M)))²` ([`residual_gain`]): 1 at whole ν, at
 //! least 0.95 from ν = 1 on.
 
+use crate::parallel::{fill_chunks, fill_each, workers};
 use crate::path::{IndexedPoints, PathPoint, Spiral, WalkedRule};
 use std::borrow::Cow;
+use std::convert::Infallible;
 use std::f64::consts::TAU;
 use std::ops::Range;
 use thiserror::Error;
@@ -477,7 +479,11 @@ impl PathSignal {
 
     /// `value(i)` of the points at the samples of `stretch` ([`Self::stretch`]): to the bit
     /// what [`Self::values_at`] its rate gives at those samples.
-    pub fn stretch_values(&self, stretch: &Stretch, value: impl Fn(usize) -> f64) -> Vec<f64> {
+    pub fn stretch_values(
+        &self,
+        stretch: &Stretch,
+        value: impl Fn(usize) -> f64 + Sync,
+    ) -> Vec<f64> {
         match self.len() >= 2 && stretch.samples_per_rev > 0 {
             true => self.resample_samples(value, stretch.samples_per_rev, stretch.samples()),
             false => Vec::new(),
@@ -530,7 +536,11 @@ impl PathSignal {
     }
 
     /// [`Self::resample`] where it has the two points and the positive rate it needs.
-    fn values_at_by(&self, samples_per_rev: usize, value: impl Fn(usize) -> f64) -> Vec<f64> {
+    fn values_at_by(
+        &self,
+        samples_per_rev: usize,
+        value: impl Fn(usize) -> f64 + Sync,
+    ) -> Vec<f64> {
         match self.len() >= 2 && samples_per_rev > 0 {
             true => self.resample(value, samples_per_rev),
             false => Vec::new(),
@@ -539,27 +549,58 @@ impl PathSignal {
 
     /// The values `value(i)` of the points linearly interpolated at `m` samples per revolution
     /// from the first point.
-    fn resample(&self, value: impl Fn(usize) -> f64, m: usize) -> Vec<f64> {
+    fn resample(&self, value: impl Fn(usize) -> f64 + Sync, m: usize) -> Vec<f64> {
         let count = grid_count(self.span_rad(), TAU / m as f64);
         self.resample_samples(value, m, 0..count)
     }
 
-    /// [`Self::resample`]'s samples `samples` alone, to the bit.
+    /// [`Self::resample`]'s samples `samples` alone, to the bit: in contiguous parts on
+    /// [`workers`] threads, each part walking from the interval the walk from the first point
+    /// would stop at for its first sample.
     fn resample_samples(
         &self,
-        value: impl Fn(usize) -> f64,
+        value: impl Fn(usize) -> f64 + Sync,
         m: usize,
         samples: Range<usize>,
     ) -> Vec<f64> {
+        let mut out = vec![0.0; samples.len()];
+        self.resample_with(value, m, samples.start, &mut out, |slot, v| *slot = v);
+        out
+    }
+
+    /// The samples `first … first + out.len() − 1` of [`Self::resample`], each handed to
+    /// `set(slot, value)` with its slot of `out`, in contiguous parts on [`workers`] threads.
+    fn resample_with(
+        &self,
+        value: impl Fn(usize) -> f64 + Sync,
+        m: usize,
+        first: usize,
+        out: &mut [f64],
+        set: impl Fn(&mut f64, f64) + Sync,
+    ) {
+        let Ok(()) = fill_chunks(out, |start, part| {
+            self.resample_into(&value, m, first + start, part, &set);
+            Ok::<(), Infallible>(())
+        });
+    }
+
+    /// [`Self::resample_with`] of one part, on the calling thread.
+    fn resample_into(
+        &self,
+        value: impl Fn(usize) -> f64,
+        m: usize,
+        first: usize,
+        out: &mut [f64],
+        set: impl Fn(&mut f64, f64),
+    ) {
         let step = TAU / m as f64;
-        let mut out = Vec::with_capacity(samples.len());
         // The interval k … k + 1 with its ends' angles and values, read again only as k moves:
         // for the first sample, the interval the walk from the first point would stop at.
-        let start = samples.start as f64 * step;
+        let start = first as f64 * step;
         let mut k = (first_past(1, self.len(), |i| self.angle(i) < start) - 1).min(self.len() - 2);
         let (mut a0, mut a1) = (self.angle(k), self.angle(k + 1));
         let (mut v0, mut v1) = (value(k), value(k + 1));
-        for j in samples {
+        for (j, slot) in (first..).zip(out.iter_mut()) {
             let phi = j as f64 * step;
             while k + 2 < self.len() && a1 < phi {
                 k += 1;
@@ -571,9 +612,8 @@ impl PathSignal {
             } else {
                 1.0
             };
-            out.push(v0 + t * (v1 - v0));
+            set(slot, v0 + t * (v1 - v0));
         }
-        out
     }
 
     /// The largest slope and curvature of `values` (one per point) against the spindle angle,
@@ -676,9 +716,32 @@ pub fn extremes(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
         })
 }
 
+/// [`extremes`] of `value(i)` for `i` in `0..n`, in contiguous parts on [`workers`] threads
+/// (the smallest and largest do not depend on the order they are met in).
+pub fn extremes_at(n: usize, value: impl Fn(usize) -> f64 + Sync) -> (f64, f64) {
+    let parts = workers().clamp(1, n.max(1));
+    let size = n.div_ceil(parts);
+    let mut found = vec![(f64::INFINITY, f64::NEG_INFINITY); parts];
+    let Ok(()) = fill_each(&mut found, |k| {
+        Ok::<_, Infallible>(extremes((k * size..n.min((k + 1) * size)).map(&value)))
+    });
+    (found.iter()).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &(lo, hi)| {
+        (a.min(lo), b.max(hi))
+    })
+}
+
+/// [`peak_to_valley`] of `value(i)` for `i` in `0..n` ([`extremes_at`]).
+pub fn peak_to_valley_at(n: usize, value: impl Fn(usize) -> f64 + Sync) -> f64 {
+    spread(extremes_at(n, value))
+}
+
 /// Largest minus smallest of `values` (0 for none).
 pub fn peak_to_valley(values: impl IntoIterator<Item = f64>) -> f64 {
-    let (lo, hi) = extremes(values);
+    spread(extremes(values))
+}
+
+/// Largest minus smallest of `(smallest, largest)` (0 for none).
+fn spread((lo, hi): (f64, f64)) -> f64 {
     if hi >= lo { hi - lo } else { 0.0 }
 }
 
@@ -725,6 +788,20 @@ impl UniformSignal {
             Cow::Borrowed(&self.z_mm)
         } else {
             Cow::Owned(signal.values_at(self.samples_per_rev, &signal.z_mm))
+        }
+    }
+
+    /// Each sample `v` of `record` (one a sample) made `h − v`, `h` the height there
+    /// ([`Self::heights`], made in place where they were let go: no second record).
+    pub fn heights_less(&self, signal: &PathSignal, record: &mut [f64]) {
+        if self.z_mm.len() == self.samples {
+            record
+                .iter_mut()
+                .zip(&self.z_mm)
+                .for_each(|(v, h)| *v = h - *v);
+        } else if signal.len() >= 2 && record.len() == self.samples {
+            let height = |i: usize| signal.z_mm[i];
+            signal.resample_with(height, self.samples_per_rev, 0, record, |v, h| *v = h - *v);
         }
     }
 
@@ -1331,6 +1408,55 @@ pub(crate) mod tests {
             // Running sums of 385 values below 10: rounding far below 1e-12.
             assert!((v - want).abs() < 1e-12, "sample {j}: {v} vs {want}");
         }
+    }
+
+    #[test]
+    fn resampling_in_parts_is_the_serial_walk_to_the_bit() {
+        // Uneven steps (the walk's interval changes at every kind of place): the grid made in
+        // parts on the cores, a part walking from its own first sample, is the one walk from
+        // the first point, at the path's own rate and at others.
+        let mut theta = Vec::new();
+        let mut phi = 0.0;
+        for k in 0..20_000 {
+            theta.push(phi);
+            phi += 1e-3 * (1.0 + (k % 7) as f64);
+        }
+        let z: Vec<f64> = theta.iter().map(|a| (3.0 * a).sin() + 0.1 * a).collect();
+        let s = PathSignal::from_columns(theta.clone(), vec![1.0; theta.len()], z.clone());
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        for m in [s.samples_per_rev(), 97, 5000] {
+            let count = grid_count(s.span_rad(), TAU / m as f64);
+            let mut serial = vec![0.0; count];
+            s.resample_into(|i| z[i], m, 0, &mut serial, |v, x| *v = x);
+            assert_eq!(bits(&s.values_at(m, &z)), bits(&serial), "{m} a revolution");
+        }
+        // The heights less a record, in its memory: held or made again, the same bits as the
+        // subtraction of the heights' own record.
+        let mut grid = s.uniform().unwrap();
+        let record: Vec<f64> = (0..grid.len()).map(|j| (j as f64 * 0.37).cos()).collect();
+        let expected: Vec<f64> = grid.z_mm.iter().zip(&record).map(|(h, v)| h - v).collect();
+        for held in [true, false] {
+            if !held {
+                grid.z_mm = Vec::new();
+            }
+            let mut w = record.clone();
+            grid.heights_less(&s, &mut w);
+            assert_eq!(bits(&w), bits(&expected), "heights held: {held}");
+        }
+    }
+
+    #[test]
+    fn extremes_found_in_parts_are_those_of_one_pass() {
+        for n in [0, 1, 2, 3, 1001] {
+            let value = |i: usize| ((i * 7919) % 1013) as f64 - 500.0 + 0.25 * i as f64;
+            let one_pass = extremes((0..n).map(value));
+            assert_eq!(extremes_at(n, value), one_pass, "{n} values");
+            assert_eq!(
+                peak_to_valley_at(n, value),
+                peak_to_valley((0..n).map(value))
+            );
+        }
+        assert_eq!(peak_to_valley_at(0, |_| 1.0), 0.0);
     }
 
     #[test]

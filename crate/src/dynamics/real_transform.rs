@@ -137,7 +137,7 @@ impl RealInverse {
 }
 
 /// Whether a record of `len` samples is transformed in place: from [`IN_PLACE_FROM`], even.
-fn in_place(len: usize) -> bool {
+pub(crate) fn in_place(len: usize) -> bool {
     len >= IN_PLACE_FROM && len.is_multiple_of(2)
 }
 

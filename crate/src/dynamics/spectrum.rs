@@ -76,7 +76,7 @@
 //! plans are deterministic, so the results are the same to the bit).
 
 use crate::dynamics::path_signal::{PathSignal, Stretch, UniformSignal, hz, residual_gain};
-use crate::dynamics::real_transform::{RealForward, RealInverse, real_values_of};
+use crate::dynamics::real_transform::{RealForward, RealInverse, in_place, real_values_of};
 use crate::parallel::{both, fill_each};
 use rustfft::num_complex::Complex;
 use serde::Serialize;
@@ -300,19 +300,57 @@ fn amplitude_spectrum_of(
 }
 
 /// [`amplitude_spectrum_and_band_on`] of the grid's heights `heights` (as `grid.z_mm`), and
-/// [`highest_significant_cycles_per_rev`] of `values` (one a grid sample), each to the bit,
-/// both handed over: the two records prepared one after the other (each in its own memory)
-/// while the transform of their common length is made on a second core, then transformed on
-/// two cores by that one transform.
+/// [`highest_significant_cycles_per_rev`] of the values `values` makes (one a grid sample),
+/// each to the bit, by one transform of their common length made on a second core while the
+/// heights' residual is taken. A long record (transformed in place,
+/// [`crate::dynamics::real_transform::IN_PLACE_FROM`] samples or more) is taken one at a time:
+/// the heights' spectrum first, then the values are made in its memory's stead (the dynamics'
+/// peak holds one record of the grid, not two). Short records are prepared one after the other
+/// and transformed on two cores.
 pub fn amplitude_spectrum_and_bands_on(
     grid: &UniformSignal,
     heights: Vec<f64>,
-    values: Vec<f64>,
+    values: impl FnOnce() -> Vec<f64>,
     spindle_rpm: f64,
     max_bins: usize,
 ) -> (Spectrum, Option<f64>, f64) {
     let len = fast_length(grid.len(), false);
-    if values.len() != grid.len() || heights.len() != grid.len() {
+    let per_rev = grid.samples_per_rev;
+    let spectrum_by = |forward: &RealForward, residual: Option<Vec<f64>>| match residual {
+        Some(r) => spectrum_of(
+            grid,
+            &hann_amplitudes_by(forward, r),
+            len,
+            spindle_rpm,
+            max_bins,
+        ),
+        None => (Spectrum::default(), None),
+    };
+    let band_by = |forward: &RealForward, residual: Vec<f64>| {
+        highest_significant_of(&hann_amplitudes_by(forward, residual), per_rev, len)
+    };
+    let heights_residual =
+        |heights| positive_speed(spindle_rpm).then(|| residual_of(grid, heights));
+    if heights.len() != grid.len() {
+        let (spectrum, band) = amplitude_spectrum_of(grid, heights, spindle_rpm, max_bins);
+        return (
+            spectrum,
+            band,
+            highest_significant_cycles_per_rev(grid, values()),
+        );
+    }
+    if in_place(len) {
+        let (heights, forward) = both(|| heights_residual(heights), || forward_plan(len));
+        let (spectrum, band) = spectrum_by(&forward, heights);
+        let values = values();
+        let values_band = match values.len() == grid.len() {
+            true => band_by(&forward, residual_of(grid, values)),
+            false => highest_significant_cycles_per_rev(grid, values),
+        };
+        return (spectrum, band, values_band);
+    }
+    let values = values();
+    if values.len() != grid.len() {
         let (spectrum, band) = amplitude_spectrum_of(grid, heights, spindle_rpm, max_bins);
         return (
             spectrum,
@@ -321,27 +359,13 @@ pub fn amplitude_spectrum_and_bands_on(
         );
     }
     let ((heights, values), forward) = both(
-        || {
-            let heights = positive_speed(spindle_rpm).then(|| residual_of(grid, heights));
-            (heights, residual_of(grid, values))
-        },
+        || (heights_residual(heights), residual_of(grid, values)),
         || forward_plan(len),
     );
-    let (a, values_band) = both(
-        || heights.map(|r| hann_amplitudes_by(&forward, r)),
-        || {
-            highest_significant_of(
-                &hann_amplitudes_by(&forward, values),
-                grid.samples_per_rev,
-                len,
-            )
-        },
+    let ((spectrum, band), values_band) = both(
+        || spectrum_by(&forward, heights),
+        || band_by(&forward, values),
     );
-    drop(forward);
-    let (spectrum, band) = match a {
-        Some(a) => spectrum_of(grid, &a, len, spindle_rpm, max_bins),
-        None => (Spectrum::default(), None),
-    };
     (spectrum, band, values_band)
 }
 
@@ -752,7 +776,8 @@ mod tests {
             // The same with the radii's figure beside it, by one shared transform on two
             // cores, and each figure with its transform made beside its record: to the bit.
             let radii = highest_significant_cycles_per_rev(&g, rho.clone());
-            let both = amplitude_spectrum_and_bands_on(&g, g.z_mm.clone(), rho.clone(), 600.0, 256);
+            let both =
+                amplitude_spectrum_and_bands_on(&g, g.z_mm.clone(), || rho.clone(), 600.0, 256);
             assert_eq!(both.0, spectrum);
             assert_eq!(both.1.map(f64::to_bits), band.map(f64::to_bits));
             assert_eq!(both.2.to_bits(), radii.to_bits());
@@ -771,10 +796,29 @@ mod tests {
         assert_eq!(amplitude_spectrum_and_band_on(&g, 0.0, 256).1, None);
         // Without a speed there is no spectrum, but the other figure still is.
         let (none, no_band, radii) =
-            amplitude_spectrum_and_bands_on(&g, g.z_mm.clone(), rho.clone(), 0.0, 256);
+            amplitude_spectrum_and_bands_on(&g, g.z_mm.clone(), || rho.clone(), 0.0, 256);
         assert_eq!((none, no_band), (Spectrum::default(), None));
         let own = highest_significant_cycles_per_rev(&g, rho);
         assert_eq!(radii.to_bits(), own.to_bits());
+    }
+
+    #[test]
+    fn a_long_grids_spectrum_and_radii_figure_one_at_a_time_are_each_alone_to_the_bit() {
+        // A grid of 2²⁰ + 1 samples (a transform in place): the spectrum, then the radii's
+        // record made in its stead, each the same as made alone.
+        let tones = |_: f64, t: f64| 1e-3 * (3.0 * t).sin() + 2e-5 * (17.5 * t).cos();
+        let s = spiral(8.0, 1 << 17, 4.0, 0.01, tones);
+        let g = s.uniform().unwrap();
+        assert!(in_place(fast_length(g.len(), false)));
+        let rho = || s.radii_at(g.samples_per_rev);
+        let (spectrum, band) = amplitude_spectrum_and_band_on(&g, 600.0, 256);
+        let radii = highest_significant_cycles_per_rev(&g, rho());
+        let (one, one_band, one_radii) =
+            amplitude_spectrum_and_bands_on(&g, g.z_mm.clone(), rho, 600.0, 256);
+        assert_eq!(one, spectrum);
+        assert_eq!(one_band.map(f64::to_bits), band.map(f64::to_bits));
+        assert_eq!(one_radii.to_bits(), radii.to_bits());
+        assert!((band.unwrap() - 17.5).abs() < 0.3, "{band:?}");
     }
 
     #[test]

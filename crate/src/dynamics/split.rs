@@ -50,6 +50,7 @@
 
 use crate::dynamics::path_signal::{
     AngleExtremes, PathSignal, SignalError, UniformSignal, hz, omega, peak_to_valley,
+    peak_to_valley_at,
 };
 use crate::dynamics::real_transform::RealInverse;
 use crate::dynamics::spectrum::{
@@ -57,7 +58,7 @@ use crate::dynamics::spectrum::{
 };
 use crate::field::{FieldError, positive};
 use crate::job::SplitSpec;
-use crate::parallel::both;
+use crate::parallel::{both, map_indices};
 use rustfft::num_complex::Complex;
 use serde::{Deserialize, Serialize};
 use std::borrow::Cow;
@@ -220,7 +221,7 @@ pub enum SplitError {
 
 /// The servo's share W = z − Z of the path's heights `z` with the slide's `slide`, mm.
 pub fn servo_share(z: &[f64], slide: &[f64]) -> Vec<f64> {
-    z.iter().zip(slide).map(|(a, b)| a - b).collect()
+    map_indices(z.len().min(slide.len()), |i| z[i] - slide[i])
 }
 
 /// The low-pass response at frequency `k` for cutoff `k_c` (any one unit).
@@ -240,8 +241,8 @@ struct LowPass {
 }
 
 impl LowPass {
-    /// The filter of `heights`, one a sample of `grid`.
-    fn new(grid: &UniformSignal, heights: &[f64]) -> Self {
+    /// The filter of `heights`, one a sample of `grid`, extended in their memory.
+    fn new(grid: &UniformSignal, heights: Vec<f64>) -> Self {
         let head = EXTENSION_REVS * grid.samples_per_rev;
         let len = fast_length(grid.len() + 2 * head, false);
         // The record extended while its transform is made on a second core, then transformed
@@ -277,28 +278,35 @@ impl LowPass {
 /// The grid signal `x` with `e` samples added before and `tail` after: the first (last)
 /// revolution of the non-symmetric residual repeated, on the symmetric part continued along
 /// its tangent over one revolution (module docs). Only the symmetric part's first and last
-/// revolution are made.
-fn extend(grid: &UniformSignal, x: &[f64], e: usize, tail: usize) -> Vec<f64> {
+/// revolution are made. The record grows in `x`'s memory (a long one is remapped, not copied),
+/// its samples moved up by `e`.
+fn extend(grid: &UniformSignal, mut x: Vec<f64>, e: usize, tail: usize) -> Vec<f64> {
     let (n, m) = (x.len(), grid.samples_per_rev);
     let rev = m.min(n - 1).max(1);
     // The symmetric part at samples 0 … rev and n − 1 − rev … n − 1.
-    let (head_sym, tail_sym) = grid.symmetric_part_at_ends(x, rev + 1);
+    let (head_sym, tail_sym) = grid.symmetric_part_at_ends(&x, rev + 1);
     let sym_end = |j: usize| tail_sym[j + rev + 1 - n];
     let (slope_head, slope_tail) = (
         (head_sym[rev] - head_sym[0]) / rev as f64,
         (sym_end(n - 1) - sym_end(n - 1 - rev)) / rev as f64,
     );
-    let head = (0..e).map(|i| {
+    x.reserve_exact(e + tail);
+    x.resize(n + e + tail, 0.0);
+    x.copy_within(0..n, e);
+    // Sample j of the signal is now at e + j.
+    let (body, after) = x.split_at_mut(e + n);
+    let (before, signal) = body.split_at_mut(e);
+    for (i, v) in before.iter_mut().enumerate() {
         // Sample −(e − i): the residual one (or more) whole revolutions in.
         let back = e - i;
         let j = (rev - back % rev) % rev;
-        x[j] - head_sym[j] + head_sym[0] - slope_head * back as f64
-    });
-    let tail = (1..=tail).map(|ahead| {
+        *v = signal[j] - head_sym[j] + head_sym[0] - slope_head * back as f64;
+    }
+    for (ahead, v) in (1..).zip(after.iter_mut()) {
         let j = n - 1 - (rev - ahead % rev) % rev;
-        x[j] - sym_end(j) + sym_end(n - 1) + slope_tail * ahead as f64
-    });
-    head.chain(x.iter().copied()).chain(tail).collect()
+        *v = signal[j] - sym_end(j) + sym_end(n - 1) + slope_tail * ahead as f64;
+    }
+    x
 }
 
 /// Splits `signal` at `spindle_rpm` as `spec` says, checking the channels against `limits` when
@@ -355,7 +363,7 @@ pub fn split_on(
             }
             let k_c = cutoff_hz * 60.0 / spindle_rpm;
             // The filter is let go before the checks' own transforms.
-            let z_grid = LowPass::new(grid, &ctx.heights()).apply(k_c);
+            let z_grid = LowPass::new(grid, ctx.heights().into_owned()).apply(k_c);
             Ok(ctx.finish(z_grid, Some(k_c), limits, None))
         }
         SplitSpec::Auto => {
@@ -412,8 +420,8 @@ impl Context<'_> {
 
     /// The split with slide channel `z_grid` on the grid: Z at the points by interpolation,
     /// W = z − Z, and the verdict against `limits` (`other_rpm` a feasible speed found for
-    /// another split). The channels' spectra come first, before the channels at the points
-    /// are held beside their transforms; `z_grid` is let go once Z is at the points.
+    /// another split). Z at the points comes first; the channels' spectra then take `z_grid`
+    /// (the servo's in its memory), before W is made at the points.
     fn finish(
         &self,
         z_grid: Vec<f64>,
@@ -422,13 +430,11 @@ impl Context<'_> {
         other_rpm: Option<f64>,
     ) -> Split {
         let s = self.signal;
-        let slide_at = |i: usize| self.grid.interpolate(&z_grid, s.angle(i));
+        let z = map_indices(s.len(), |i| self.grid.interpolate(&z_grid, s.angle(i)));
         let bandwidths = limits.map(|_| {
-            let w_is_zero = (0..s.len()).all(|i| s.z_mm[i] - slide_at(i) == 0.0);
-            self.bandwidths(&z_grid, cutoff_cpr, w_is_zero)
+            let w_is_zero = (0..s.len()).all(|i| s.z_mm[i] - z[i] == 0.0);
+            self.bandwidths(z_grid, cutoff_cpr, w_is_zero)
         });
-        let z: Vec<f64> = (0..s.len()).map(slide_at).collect();
-        drop(z_grid);
         let w = servo_share(&s.z_mm, &z);
         let verdict = match (limits, bandwidths) {
             (Some(l), Some(b)) => verdict(self.checks(&z, &w, b, l), self.rpm, other_rpm),
@@ -450,7 +456,7 @@ impl Context<'_> {
         let (bandwidths, motion) = both(
             || match self.z_band_cpr {
                 Some(k) => (hz(k, self.rpm), 0.0),
-                None => self.bandwidths(&self.heights(), None, true),
+                None => self.bandwidths(self.heights().into_owned(), None, true),
             },
             || self.motion_alone(z),
         );
@@ -467,7 +473,7 @@ impl Context<'_> {
             };
         }
         // The filter's spectrum is let go before the checks' own transforms.
-        let filter = LowPass::new(self.grid, &self.heights());
+        let filter = LowPass::new(self.grid, self.heights().into_owned());
         let (k, z_grid) = self.lowest_cutoff(&filter, limits.fts_stroke_mm);
         drop(filter);
         let alone_rpm = feasible_rpm(&alone, self.rpm);
@@ -484,9 +490,8 @@ impl Context<'_> {
         let pv_w = |k: f64| {
             let z_grid = filter.apply(k);
             let s = self.signal;
-            let w = (s.z_mm.iter().enumerate())
-                .map(|(i, z)| z - self.grid.interpolate(&z_grid, s.angle(i)));
-            (peak_to_valley(w), z_grid)
+            let w = |i: usize| s.z_mm[i] - self.grid.interpolate(&z_grid, s.angle(i));
+            (peak_to_valley_at(s.len(), w), z_grid)
         };
         let (mut lo, mut hi) = (
             AUTO_MIN_CYCLES_PER_REV,
@@ -517,22 +522,30 @@ impl Context<'_> {
 
     /// The bandwidth figures, Hz, of the slide's channel `z_grid` on the grid and of the
     /// servo's: the slide's is the cutoff when there is one, else Z's highest significant
-    /// frequency; the servo's is that of W taken on the grid as `z − Z`, 0 when W is 0 at
-    /// every point (`w_is_zero`).
-    fn bandwidths(&self, z_grid: &[f64], cutoff_cpr: Option<f64>, w_is_zero: bool) -> (f64, f64) {
+    /// frequency; the servo's is that of W taken on the grid as `z − Z` (in `z_grid`'s
+    /// memory), 0 when W is 0 at every point (`w_is_zero`).
+    fn bandwidths(
+        &self,
+        mut z_grid: Vec<f64>,
+        cutoff_cpr: Option<f64>,
+        w_is_zero: bool,
+    ) -> (f64, f64) {
         // Each channel made on the grid while its transform is made on a second core.
-        let band = |make: &dyn Fn() -> Vec<f64>| {
+        let band = |make: &mut dyn FnMut() -> Vec<f64>| {
             let cpr = highest_significant_cycles_per_rev_beside(self.grid, self.grid.len(), make);
             hz(cpr, self.rpm)
         };
-        let slide = cutoff_cpr.map_or_else(|| band(&|| z_grid.to_vec()), |k| hz(k, self.rpm));
+        let slide = match cutoff_cpr {
+            Some(k) => hz(k, self.rpm),
+            None if w_is_zero => band(&mut || std::mem::take(&mut z_grid)),
+            None => band(&mut || z_grid.clone()),
+        };
         let fts = if w_is_zero {
             0.0
         } else {
-            band(&|| {
-                let mut w = self.heights().into_owned();
-                w.iter_mut().zip(z_grid).for_each(|(a, b)| *a -= b);
-                w
+            band(&mut || {
+                self.grid.heights_less(self.signal, &mut z_grid);
+                std::mem::take(&mut z_grid)
             })
         };
         (slide, fts)
@@ -548,11 +561,11 @@ impl Context<'_> {
     /// curvatures against the spindle angle, and W's peak-to-valley, mm.
     fn motion(&self, z: &[f64], w: &[f64]) -> Motion {
         let s = self.signal;
-        Motion {
-            z: s.angle_extremes(z),
-            w: s.angle_extremes(w),
-            w_pv_mm: peak_to_valley(w.iter().copied()),
-        }
+        let (z, (w, w_pv_mm)) = both(
+            || s.angle_extremes(z),
+            || (s.angle_extremes(w), peak_to_valley(w.iter().copied())),
+        );
+        Motion { z, w, w_pv_mm }
     }
 
     /// [`Self::motion`] of the slide cutting `z` alone, without a servo channel of zeros: W's

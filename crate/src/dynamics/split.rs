@@ -25,7 +25,15 @@
 //! each other 16 revolutions from the path, where the filter's impulse response, decaying like
 //! `e^(−2π·k_c·sin(π/8)·t)` over t revolutions, has fallen below 1e-8 even at the lowest automatic
 //! cutoff of ½ cycle/rev. Real and even, H delays nothing. Z is interpolated linearly back to the
-//! path points.
+//! path points. A grid of more than [`SEGMENT_SAMPLES`] samples is filtered in segments of at
+//! most that many (overlap-save): each segment's record carries the extended signal
+//! [`SEGMENT_MARGIN_CYCLES`]`/k` revolutions (k the lowest cutoff applied), at least
+//! [`SEGMENT_MARGIN_REVS`], beyond either side where it meets another, over which the impulse
+//! response falls by 2e-17, so that a segment's samples are the whole record's to the
+//! rounding of its own transform (to pm at cutoffs near the grid's Nyquist frequency). The automatic split's trials then hold the segments' spectra, about one
+//! record of the grid, and a segment's channel on each core, not a whole channel beside a
+//! whole spectrum; the channel at the cutoff found is made whole once, each segment's spectrum
+//! let go as its samples are in.
 //!
 //! **Automatic** ([`SplitSpec::Auto`], needs [`SplitLimits`]): the slide alone (`Z = z`,
 //! `W = 0`) if z keeps within the slide's velocity, acceleration and bandwidth; otherwise the
@@ -49,8 +57,7 @@
 //! k*. No speed helps when the stroke fails.
 
 use crate::dynamics::path_signal::{
-    AngleExtremes, PathSignal, SignalError, UniformSignal, hz, omega, peak_to_valley,
-    peak_to_valley_at,
+    AngleExtremes, PathSignal, SignalError, UniformSignal, extremes, hz, omega, peak_to_valley,
 };
 use crate::dynamics::real_transform::RealInverse;
 use crate::dynamics::spectrum::{
@@ -58,10 +65,12 @@ use crate::dynamics::spectrum::{
 };
 use crate::field::{FieldError, positive};
 use crate::job::SplitSpec;
-use crate::parallel::{both, map_indices};
+use crate::parallel::{both, fill_each, map_indices};
 use rustfft::num_complex::Complex;
 use serde::{Deserialize, Serialize};
 use std::borrow::Cow;
+use std::convert::Infallible;
+use std::ops::Range;
 use thiserror::Error;
 
 /// Order of the Butterworth response whose square is the low-pass ([`response`]).
@@ -229,84 +238,286 @@ pub fn response(k: f64, k_c: f64) -> f64 {
     1.0 / (1.0 + (k / k_c).abs().powi(2 * BUTTERWORTH_ORDER))
 }
 
+/// Grid samples a segment of the low-pass gives at most ([`LowPass`]; records of about
+/// 32 MiB): a longer grid is filtered segment by segment, so that the automatic split's trials
+/// hold the segments' spectra (about one record of the grid in all) and a segment's channel a
+/// core, not a channel of the whole grid beside a spectrum of it.
+pub const SEGMENT_SAMPLES: usize = 1 << 22;
+
+/// The margin of signal either side of a segment's samples where it meets another,
+/// revolutions, is `SEGMENT_MARGIN_CYCLES / k_c` at the lowest cutoff `k_c` (cycles per
+/// revolution) the filter is applied at, over which its impulse response falls by
+/// `e^(−2π·sin(π/8)·16)` = 2e-17 (module docs), and at least [`SEGMENT_MARGIN_REVS`].
+pub const SEGMENT_MARGIN_CYCLES: f64 = 16.0;
+
+/// The least margin where segments meet, revolutions: the automatic split's at its lowest
+/// cutoff. A cutoff near the grid's Nyquist frequency leaves the response cut off there, whose
+/// impulse response decays only as 1/t² (pm over this margin: `a_filter_in_segments_is_the_whole_records`).
+pub const SEGMENT_MARGIN_REVS: usize = 2 * EXTENSION_REVS;
+
 /// The zero-phase low-pass of one grid signal at any cutoff: the (real-input) FFT of the
-/// extended signal is taken once, and its inverse planned once.
+/// extended signal is taken once, and its inverse planned once; a grid longer than
+/// [`SEGMENT_SAMPLES`] in segments of it (module docs).
 struct LowPass {
-    /// Bins 0 … len/2 of the extended signal's spectrum.
-    spectrum: Vec<Complex<f64>>,
-    /// The inverse transform, of the extended signal's length.
-    inverse: RealInverse,
+    segments: Vec<Segment>,
     samples: usize,
     samples_per_rev: usize,
 }
 
+/// A segment of [`LowPass`]: the spectrum of the extended signal's samples `start … start +
+/// len − 1` (grid numbers, negative before the first), whose filtered samples `core` it gives.
+struct Segment {
+    /// Bins 0 … len/2 of the record's spectrum.
+    spectrum: Vec<Complex<f64>>,
+    /// The inverse transform, of the record's length.
+    inverse: RealInverse,
+    /// The grid number of the record's first sample.
+    start: isize,
+    /// The grid samples it gives.
+    core: Range<usize>,
+}
+
 impl LowPass {
-    /// The filter of `heights`, one a sample of `grid`, extended in their memory.
-    fn new(grid: &UniformSignal, heights: Vec<f64>) -> Self {
-        let head = EXTENSION_REVS * grid.samples_per_rev;
-        let len = fast_length(grid.len() + 2 * head, false);
-        // The record extended while its transform is made on a second core, then transformed
-        // while the inverse is made there.
-        let (extended, forward) = both(
-            || extend(grid, heights, head, len - grid.len() - head),
-            || forward_plan(len),
-        );
-        let (spectrum, inverse) = both(|| forward.spectrum(extended), || inverse_plan(len));
+    /// The filter of `heights`, one a sample of `grid` (the grid of `signal`), for cutoffs of
+    /// at least `lowest_cpr` cycles per revolution: the whole record extended in their memory,
+    /// or for a longer grid the segments, each made from the path ([`PathSignal::values_at`]'s
+    /// samples, to the bit) once the heights' ends are read and the heights let go.
+    fn new(signal: &PathSignal, grid: &UniformSignal, heights: Vec<f64>, lowest_cpr: f64) -> Self {
+        Self::in_segments(signal, grid, heights, lowest_cpr, SEGMENT_SAMPLES)
+    }
+
+    /// [`Self::new`] in segments of at most `most` samples (or 8 margins).
+    fn in_segments(
+        signal: &PathSignal,
+        grid: &UniformSignal,
+        heights: Vec<f64>,
+        lowest_cpr: f64,
+        most: usize,
+    ) -> Self {
+        let m = grid.samples_per_rev;
+        let revs = (SEGMENT_MARGIN_CYCLES / lowest_cpr).ceil() as usize;
+        let margin = revs.max(SEGMENT_MARGIN_REVS) * m;
+        let ends = Ends::of(grid, &heights);
+        let layout = segments(grid.len(), m, margin, most);
+        let record = |start: isize, len: usize| ends.record(signal, m, start, len);
+        let segments = match layout.as_slice() {
+            [(start, len, _)] => {
+                let head = start.unsigned_abs();
+                vec![Segment::of(
+                    ends.extend(heights, head, len - grid.len() - head),
+                    &layout[0],
+                )]
+            }
+            _ => {
+                drop(heights);
+                (layout.iter())
+                    .map(|part| Segment::of(record(part.0, part.1), part))
+                    .collect()
+            }
+        };
         Self {
-            spectrum,
-            inverse,
+            segments,
             samples: grid.len(),
-            samples_per_rev: grid.samples_per_rev,
+            samples_per_rev: m,
         }
     }
 
-    /// The filtered grid signal at cutoff `k_c` cycles per revolution.
-    fn apply(&self, k_c: f64) -> Vec<f64> {
-        let len = self.inverse.len();
-        let cpr_per_bin = self.samples_per_rev as f64 / len as f64;
-        let bins: Vec<Complex<f64>> = (self.spectrum.iter().enumerate())
-            .map(|(j, c)| c * response(j as f64 * cpr_per_bin, k_c) / len as f64)
-            .collect();
-        let skip = EXTENSION_REVS * self.samples_per_rev;
-        let mut out = self.inverse.record(bins);
-        out.truncate(skip + self.samples);
-        out.drain(..skip);
+    /// The peak-to-valley of the servo's share `z − Z` at the points of `signal` (on `grid`)
+    /// with the slide's Z filtered at `k_c`: each segment's channel made on the next free core
+    /// and read at the points whose grid interval starts in its core.
+    fn servo_peak_to_valley(&self, signal: &PathSignal, grid: &UniformSignal, k_c: f64) -> f64 {
+        let n = self.samples;
+        let interval = |i: usize| grid.interval(n, signal.angle(i));
+        let mut found = vec![(f64::INFINITY, f64::NEG_INFINITY); self.segments.len()];
+        let Ok(()) = fill_each(&mut found, |k| {
+            let segment = &self.segments[k];
+            let channel = segment.channel(self.samples_per_rev, k_c);
+            let at = |j: usize| channel[(j as isize - segment.start) as usize];
+            let starts_before = |j: usize| move |i: usize| interval(i).0 < j;
+            let first = first_point(signal.len(), starts_before(segment.core.start));
+            let last = first_point(signal.len(), starts_before(segment.core.end));
+            let servo = (first..last).map(|i| {
+                let (j, t) = interval(i);
+                signal.z_mm[i] - (at(j) + t * (at(j + 1) - at(j)))
+            });
+            Ok::<_, Infallible>(extremes(servo))
+        });
+        // Segments without points found nothing: (∞, −∞).
+        let met = found.into_iter().filter(|(lo, hi)| lo <= hi);
+        peak_to_valley(met.flat_map(|(lo, hi)| [lo, hi]))
+    }
+
+    /// The filtered grid signal at cutoff `k_c` cycles per revolution, each segment's spectrum
+    /// let go once its samples are in.
+    fn into_channel(self, k_c: f64) -> Vec<f64> {
+        let whole = self.segments.len() == 1;
+        let mut out: Vec<f64> = Vec::new();
+        for segment in self.segments {
+            let mut channel = segment.channel(self.samples_per_rev, k_c);
+            let skip = (segment.core.start as isize - segment.start) as usize;
+            channel.truncate(skip + segment.core.len());
+            if whole {
+                channel.drain(..skip);
+                return channel;
+            }
+            out.reserve_exact(self.samples.saturating_sub(out.len()));
+            out.extend_from_slice(&channel[skip..]);
+        }
         out
     }
 }
 
-/// The grid signal `x` with `e` samples added before and `tail` after: the first (last)
-/// revolution of the non-symmetric residual repeated, on the symmetric part continued along
-/// its tangent over one revolution (module docs). Only the symmetric part's first and last
-/// revolution are made. The record grows in `x`'s memory (a long one is remapped, not copied),
-/// its samples moved up by `e`.
-fn extend(grid: &UniformSignal, mut x: Vec<f64>, e: usize, tail: usize) -> Vec<f64> {
-    let (n, m) = (x.len(), grid.samples_per_rev);
-    let rev = m.min(n - 1).max(1);
-    // The symmetric part at samples 0 … rev and n − 1 − rev … n − 1.
-    let (head_sym, tail_sym) = grid.symmetric_part_at_ends(&x, rev + 1);
-    let sym_end = |j: usize| tail_sym[j + rev + 1 - n];
-    let (slope_head, slope_tail) = (
-        (head_sym[rev] - head_sym[0]) / rev as f64,
-        (sym_end(n - 1) - sym_end(n - 1 - rev)) / rev as f64,
-    );
-    x.reserve_exact(e + tail);
-    x.resize(n + e + tail, 0.0);
-    x.copy_within(0..n, e);
-    // Sample j of the signal is now at e + j.
-    let (body, after) = x.split_at_mut(e + n);
-    let (before, signal) = body.split_at_mut(e);
-    for (i, v) in before.iter_mut().enumerate() {
-        // Sample −(e − i): the residual one (or more) whole revolutions in.
-        let back = e - i;
-        let j = (rev - back % rev) % rev;
-        *v = signal[j] - head_sym[j] + head_sym[0] - slope_head * back as f64;
+impl Segment {
+    /// The record filtered at cutoff `k_c` cycles per revolution, on a grid of
+    /// `samples_per_rev` (the whole record).
+    fn channel(&self, samples_per_rev: usize, k_c: f64) -> Vec<f64> {
+        let len = self.inverse.len();
+        let cpr_per_bin = samples_per_rev as f64 / len as f64;
+        let bins: Vec<Complex<f64>> = (self.spectrum.iter().enumerate())
+            .map(|(j, c)| c * response(j as f64 * cpr_per_bin, k_c) / len as f64)
+            .collect();
+        self.inverse.record(bins)
     }
-    for (ahead, v) in (1..).zip(after.iter_mut()) {
-        let j = n - 1 - (rev - ahead % rev) % rev;
-        *v = signal[j] - sym_end(j) + sym_end(n - 1) + slope_tail * ahead as f64;
+
+    /// The segment of the extended signal's `record` laid out as `(start, len, core)`.
+    fn of(record: Vec<f64>, (start, len, core): &(isize, usize, Range<usize>)) -> Self {
+        debug_assert_eq!(record.len(), *len);
+        // The record's transform made on a second core while it is made, then run while the
+        // inverse is made there.
+        let forward = forward_plan(*len);
+        let (spectrum, inverse) = both(|| forward.spectrum(record), || inverse_plan(*len));
+        Self {
+            spectrum,
+            inverse,
+            start: *start,
+            core: core.clone(),
+        }
     }
-    x
+}
+
+/// The first point from which `before` stops holding (`n` if it never does), for a `before`
+/// that holds up to some point and not after it.
+fn first_point(n: usize, before: impl Fn(usize) -> bool) -> usize {
+    let (mut lo, mut hi) = (0, n);
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        if before(mid) { lo = mid + 1 } else { hi = mid }
+    }
+    lo
+}
+
+/// The low-pass's records for a grid of `n` samples at `m` a revolution with `margin` samples
+/// where segments meet: `(first sample, length, core)` each, the grid numbers of a record's
+/// first sample and of the samples it gives. One record of the whole grid with
+/// [`EXTENSION_REVS`] revolutions before and at least as many after, up to `most` samples
+/// (or 8 margins); else equal cores of at most that many, each with the margin either side
+/// where it meets another and that extension at the grid's ends.
+fn segments(n: usize, m: usize, margin: usize, most: usize) -> Vec<(isize, usize, Range<usize>)> {
+    let head = EXTENSION_REVS * m;
+    let most = most.max(8 * margin);
+    if n <= most {
+        return vec![(-(head as isize), fast_length(n + 2 * head, false), 0..n)];
+    }
+    let count = n.div_ceil(most);
+    let size = n.div_ceil(count);
+    (0..count)
+        .map(|k| {
+            let core = k * size..n.min((k + 1) * size);
+            let before = if k == 0 { head } else { margin };
+            let after = if k + 1 == count { head } else { margin };
+            let len = fast_length(core.len() + before + after, false);
+            (core.start as isize - before as isize, len, core)
+        })
+        .collect()
+}
+
+/// What extends a grid signal beyond its ends (module docs): the non-symmetric residual of
+/// its first (last) revolution, on the symmetric part continued along its tangent. Only the
+/// symmetric part's first and last revolution are made.
+struct Ends {
+    samples: usize,
+    rev: usize,
+    /// The residual of samples 0 … rev − 1.
+    head: Vec<f64>,
+    /// The residual of samples n − rev … n − 1.
+    tail: Vec<f64>,
+    /// The symmetric part at samples 0 and n − 1.
+    bases: (f64, f64),
+    /// Its slopes over the first and the last revolution, a sample.
+    slopes: (f64, f64),
+}
+
+impl Ends {
+    /// The ends of the grid signal `x`.
+    fn of(grid: &UniformSignal, x: &[f64]) -> Self {
+        let (n, m) = (x.len(), grid.samples_per_rev);
+        let rev = m.min(n - 1).max(1);
+        // The symmetric part at samples 0 … rev and n − 1 − rev … n − 1.
+        let (head_sym, tail_sym) = grid.symmetric_part_at_ends(x, rev + 1);
+        let sym_end = |j: usize| tail_sym[j + rev + 1 - n];
+        Self {
+            samples: n,
+            rev,
+            head: (0..rev).map(|j| x[j] - head_sym[j]).collect(),
+            tail: (n - rev..n).map(|j| x[j] - sym_end(j)).collect(),
+            bases: (head_sym[0], sym_end(n - 1)),
+            slopes: (
+                (head_sym[rev] - head_sym[0]) / rev as f64,
+                (sym_end(n - 1) - sym_end(n - 1 - rev)) / rev as f64,
+            ),
+        }
+    }
+
+    /// The extended signal at grid number `j` outside `0 … n − 1`: before the first sample,
+    /// the residual one (or more) whole revolutions in; after the last, one (or more) back.
+    fn value(&self, j: isize) -> f64 {
+        let (n, rev) = (self.samples, self.rev);
+        if j < 0 {
+            let back = j.unsigned_abs();
+            let k = (rev - back % rev) % rev;
+            self.head[k] + self.bases.0 - self.slopes.0 * back as f64
+        } else {
+            let ahead = j as usize + 1 - n;
+            let k = rev - 1 - (rev - ahead % rev) % rev;
+            self.tail[k] + self.bases.1 + self.slopes.1 * ahead as f64
+        }
+    }
+
+    /// The grid signal `x` with `e` samples added before and `tail` after. The record grows in
+    /// `x`'s memory (a long one is remapped, not copied), its samples moved up by `e`.
+    fn extend(&self, mut x: Vec<f64>, e: usize, tail: usize) -> Vec<f64> {
+        let n = x.len();
+        x.reserve_exact(e + tail);
+        x.resize(n + e + tail, 0.0);
+        x.copy_within(0..n, e);
+        self.fill_outside(&mut x, -(e as isize));
+        x
+    }
+
+    /// The extended signal's samples `start … start + len − 1`: the grid's from the path
+    /// (`signal` at `m` a revolution), the others by [`Self::value`].
+    fn record(&self, signal: &PathSignal, m: usize, start: isize, len: usize) -> Vec<f64> {
+        let mut out = vec![0.0; len];
+        let n = self.samples as isize;
+        let (lo, hi) = (start.max(0), (start + len as isize).min(n));
+        if lo < hi {
+            let within = &mut out[(lo - start) as usize..(hi - start) as usize];
+            let height = |i: usize| signal.z_mm[i];
+            signal.resample_with(height, m, lo as usize, within, |v, h| *v = h);
+        }
+        self.fill_outside(&mut out, start);
+        out
+    }
+
+    /// Every sample of `record` (grid numbers from `start`) outside the grid by [`Self::value`].
+    fn fill_outside(&self, record: &mut [f64], start: isize) {
+        let n = self.samples as isize;
+        for (j, v) in (start..).zip(record.iter_mut()) {
+            if j < 0 || j >= n {
+                *v = self.value(j);
+            }
+        }
+    }
 }
 
 /// Splits `signal` at `spindle_rpm` as `spec` says, checking the channels against `limits` when
@@ -363,7 +574,8 @@ pub fn split_on(
             }
             let k_c = cutoff_hz * 60.0 / spindle_rpm;
             // The filter is let go before the checks' own transforms.
-            let z_grid = LowPass::new(grid, ctx.heights().into_owned()).apply(k_c);
+            let filter = LowPass::new(signal, grid, ctx.heights().into_owned(), k_c);
+            let z_grid = filter.into_channel(k_c);
             Ok(ctx.finish(z_grid, Some(k_c), limits, None))
         }
         SplitSpec::Auto => {
@@ -473,51 +685,35 @@ impl Context<'_> {
             };
         }
         // The filter's spectrum is let go before the checks' own transforms.
-        let filter = LowPass::new(self.grid, self.heights().into_owned());
-        let (k, z_grid) = self.lowest_cutoff(&filter, limits.fts_stroke_mm);
-        drop(filter);
+        let heights = self.heights().into_owned();
+        let filter = LowPass::new(self.signal, self.grid, heights, AUTO_MIN_CYCLES_PER_REV);
+        let (k, z_grid) = self.lowest_cutoff(filter, limits.fts_stroke_mm);
         let alone_rpm = feasible_rpm(&alone, self.rpm);
         self.finish(z_grid, Some(k), Some(limits), alone_rpm)
     }
 
     /// The lowest cutoff, cycles per revolution, in [[`AUTO_MIN_CYCLES_PER_REV`], M/2] at which
     /// W fits `stroke_mm` (M/2 when none does: the stroke check then fails), and the slide's
-    /// channel on the grid at that cutoff. One channel is held at a time beside the filter's
-    /// spectrum: the best so far is let go before the next is tried, and made again at the end
-    /// if the last one tried was not the best.
-    fn lowest_cutoff(&self, filter: &LowPass, stroke_mm: f64) -> (f64, Vec<f64>) {
-        // W's PV at the points for cutoff k, and Z on the grid.
-        let pv_w = |k: f64| {
-            let z_grid = filter.apply(k);
-            let s = self.signal;
-            let w = |i: usize| s.z_mm[i] - self.grid.interpolate(&z_grid, s.angle(i));
-            (peak_to_valley_at(s.len(), w), z_grid)
-        };
+    /// channel on the grid at that cutoff. A trial holds the filter's spectra and a segment's
+    /// channel a core ([`LowPass::servo_peak_to_valley`]); the channel is made whole once, at
+    /// the end, in the filter's stead.
+    fn lowest_cutoff(&self, filter: LowPass, stroke_mm: f64) -> (f64, Vec<f64>) {
+        let fits = |k: f64| filter.servo_peak_to_valley(self.signal, self.grid, k) <= stroke_mm;
         let (mut lo, mut hi) = (
             AUTO_MIN_CYCLES_PER_REV,
             self.grid.samples_per_rev as f64 / 2.0,
         );
-        let (pv, at_lo) = pv_w(lo);
-        if pv <= stroke_mm {
-            return (lo, at_lo);
+        if fits(lo) {
+            return (lo, filter.into_channel(lo));
         }
-        drop(at_lo);
-        let (pv, at_hi) = pv_w(hi);
-        if pv > stroke_mm {
-            return (hi, at_hi);
+        if !fits(hi) {
+            return (hi, filter.into_channel(hi));
         }
-        let mut at_hi = Some(at_hi);
         while hi / lo > 1.0 + AUTO_PRECISION {
             let mid = (lo * hi).sqrt();
-            at_hi = None;
-            let (pv, at_mid) = pv_w(mid);
-            if pv <= stroke_mm {
-                (hi, at_hi) = (mid, Some(at_mid));
-            } else {
-                lo = mid;
-            }
+            if fits(mid) { hi = mid } else { lo = mid }
         }
-        (hi, at_hi.unwrap_or_else(|| filter.apply(hi)))
+        (hi, filter.into_channel(hi))
     }
 
     /// The bandwidth figures, Hz, of the slide's channel `z_grid` on the grid and of the
@@ -749,6 +945,73 @@ mod tests {
         }
         assert_eq!(out.cutoff_hz, Some(k_c));
         assert_eq!(out.verdict, Verdict::Unchecked);
+    }
+
+    #[test]
+    fn segments_tile_the_grid_with_their_margins() {
+        let (m, margin) = (64, 2048);
+        for n in [100, 16_384, 16_385, 50_000, 131_073] {
+            let layout = segments(n, m, margin, 16_384);
+            let head = (EXTENSION_REVS * m) as isize;
+            assert_eq!(layout.len(), n.div_ceil(16_384), "{n} samples");
+            let mut next = 0;
+            for (k, (start, len, core)) in layout.iter().enumerate() {
+                assert_eq!(core.start, next);
+                next = core.end;
+                assert!(core.len() <= 16_384);
+                let before = if k == 0 { head } else { margin as isize };
+                let after = if k + 1 == layout.len() {
+                    head
+                } else {
+                    margin as isize
+                };
+                assert_eq!(*start, core.start as isize - before);
+                assert!(*start + *len as isize >= core.end as isize + after);
+                assert_eq!(*len, fast_length(*len, false));
+            }
+            assert_eq!(next, n);
+        }
+        // Margins of more than an eighth of the most a segment gives widen the segments.
+        assert_eq!(segments(50_000, m, 4096, 16_384).len(), 2);
+    }
+
+    #[test]
+    fn a_filter_in_segments_is_the_whole_records() {
+        // 1500 turns of 64 samples (96 001, eight segments of at most 16 384 samples with
+        // margins of 32 turns): a spiral sag of 4.5 mm with tones riding on it. At each
+        // cutoff well below the grid's Nyquist frequency (32 cycles a turn) the segments'
+        // channel is the whole record's to 1e-12 mm where they meet (beyond 32 turns of
+        // either end; 1e-14 measured). Nearer the ends each has the extensions' own error,
+        // about e^(−2π·sin(π/8)·16·k) of the sag's jump where the record wraps (module docs,
+        // 4.4e-9 at k = ½). At 20 cycles a turn the response is cut off at the Nyquist
+        // frequency at 2 % of its peak, and the impulse response of that kink decays only as
+        // 1/t²: the two differ by 3.5e-9 mm where the segments meet, 2.8e-8 mm near the ends.
+        // Everywhere within 0.1 nm, and so are the servo's PVs.
+        let z = |r: f64, t: f64| 0.3 * r * r + 1e-3 * (5.0 * t).sin() + 2e-4 * (29.0 * t).cos();
+        let s = spiral(1500.0, 64, 4.0, 0.002, z);
+        let g = s.uniform().unwrap();
+        for lowest in [AUTO_MIN_CYCLES_PER_REV, 2.0] {
+            let whole = || LowPass::in_segments(&s, &g, g.z_mm.clone(), lowest, usize::MAX);
+            let parts = || LowPass::in_segments(&s, &g, g.z_mm.clone(), lowest, 16_384);
+            assert_eq!(whole().segments.len(), 1);
+            let count = parts().segments.len();
+            assert!((6..=12).contains(&count), "{count} segments");
+            for k in [lowest, 3.0, 20.0] {
+                let pv = |f: LowPass| f.servo_peak_to_valley(&s, &g, k);
+                let (pa, pb) = (pv(whole()), pv(parts()));
+                let (a, b) = (whole().into_channel(k), parts().into_channel(k));
+                assert_eq!(a.len(), g.len());
+                assert_eq!(b.len(), g.len());
+                let ends = 2 * EXTENSION_REVS * g.samples_per_rev;
+                let apart =
+                    |range: Range<usize>| range.map(|j| (a[j] - b[j]).abs()).fold(0.0, f64::max);
+                let (inner, all) = (apart(ends..g.len() - ends), apart(0..g.len()));
+                let meet = if k <= 3.0 { 1e-12 } else { 1e-8 };
+                assert!(inner <= meet, "k {k}: {inner} mm where the segments meet");
+                assert!(all <= 1e-7, "k {k}: {all} mm");
+                assert!((pa - pb).abs() <= 1e-7, "k {k}: PV {pa} against {pb}");
+            }
+        }
     }
 
     #[test]

@@ -57,7 +57,7 @@
 //! `1 − T(ν)`, `T(ν) = (sin πν / (M·sin(πν/M)))²` ([`residual_gain`]): 1 at whole ν, at
 //! least 0.95 from ν = 1 on.
 
-use crate::parallel::fill_chunks;
+use crate::parallel::{fill_chunks, fill_each, workers};
 use crate::path::{IndexedPoints, PathPoint, Spiral, WalkedRule};
 use std::borrow::Cow;
 use std::convert::Infallible;
@@ -716,9 +716,32 @@ pub fn extremes(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
         })
 }
 
+/// [`extremes`] of `value(i)` for `i` in `0..n`, in contiguous parts on [`workers`] threads
+/// (the smallest and largest do not depend on the order they are met in).
+pub fn extremes_at(n: usize, value: impl Fn(usize) -> f64 + Sync) -> (f64, f64) {
+    let parts = workers().clamp(1, n.max(1));
+    let size = n.div_ceil(parts);
+    let mut found = vec![(f64::INFINITY, f64::NEG_INFINITY); parts];
+    let Ok(()) = fill_each(&mut found, |k| {
+        Ok::<_, Infallible>(extremes((k * size..n.min((k + 1) * size)).map(&value)))
+    });
+    (found.iter()).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &(lo, hi)| {
+        (a.min(lo), b.max(hi))
+    })
+}
+
+/// [`peak_to_valley`] of `value(i)` for `i` in `0..n` ([`extremes_at`]).
+pub fn peak_to_valley_at(n: usize, value: impl Fn(usize) -> f64 + Sync) -> f64 {
+    spread(extremes_at(n, value))
+}
+
 /// Largest minus smallest of `values` (0 for none).
 pub fn peak_to_valley(values: impl IntoIterator<Item = f64>) -> f64 {
-    let (lo, hi) = extremes(values);
+    spread(extremes(values))
+}
+
+/// Largest minus smallest of `(smallest, largest)` (0 for none).
+fn spread((lo, hi): (f64, f64)) -> f64 {
     if hi >= lo { hi - lo } else { 0.0 }
 }
 
@@ -1426,6 +1449,20 @@ pub(crate) mod tests {
             grid.heights_less(&s, &mut w);
             assert_eq!(bits(&w), bits(&expected), "heights held: {held}");
         }
+    }
+
+    #[test]
+    fn extremes_found_in_parts_are_those_of_one_pass() {
+        for n in [0, 1, 2, 3, 1001] {
+            let value = |i: usize| ((i * 7919) % 1013) as f64 - 500.0 + 0.25 * i as f64;
+            let one_pass = extremes((0..n).map(value));
+            assert_eq!(extremes_at(n, value), one_pass, "{n} values");
+            assert_eq!(
+                peak_to_valley_at(n, value),
+                peak_to_valley((0..n).map(value))
+            );
+        }
+        assert_eq!(peak_to_valley_at(0, |_| 1.0), 0.0);
     }
 
     #[test]

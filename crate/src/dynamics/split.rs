@@ -58,6 +58,7 @@
 
 use crate::dynamics::path_signal::{
     AngleExtremes, PathSignal, SignalError, UniformSignal, extremes, hz, omega, peak_to_valley,
+    peak_to_valley_at,
 };
 use crate::dynamics::real_transform::RealInverse;
 use crate::dynamics::spectrum::{
@@ -685,27 +686,33 @@ impl Context<'_> {
             };
         }
         // The filter's spectrum is let go before the checks' own transforms.
-        let heights = self.heights().into_owned();
-        let filter = LowPass::new(self.signal, self.grid, heights, AUTO_MIN_CYCLES_PER_REV);
-        let (k, z_grid) = self.lowest_cutoff(filter, limits.fts_stroke_mm);
+        let (k, z_grid) = self.lowest_cutoff(limits.fts_stroke_mm);
         let alone_rpm = feasible_rpm(&alone, self.rpm);
         self.finish(z_grid, Some(k), Some(limits), alone_rpm)
     }
 
     /// The lowest cutoff, cycles per revolution, in [[`AUTO_MIN_CYCLES_PER_REV`], M/2] at which
     /// W fits `stroke_mm` (M/2 when none does: the stroke check then fails), and the slide's
-    /// channel on the grid at that cutoff. A trial holds the filter's spectra and a segment's
-    /// channel a core ([`LowPass::servo_peak_to_valley`]); the channel is made whole once, at
-    /// the end, in the filter's stead.
-    fn lowest_cutoff(&self, filter: LowPass, stroke_mm: f64) -> (f64, Vec<f64>) {
-        let fits = |k: f64| filter.servo_peak_to_valley(self.signal, self.grid, k) <= stroke_mm;
-        let (mut lo, mut hi) = (
-            AUTO_MIN_CYCLES_PER_REV,
-            self.grid.samples_per_rev as f64 / 2.0,
-        );
-        if fits(lo) {
-            return (lo, filter.into_channel(lo));
+    /// channel on the grid at that cutoff. The lowest is tried first on the whole channel, made
+    /// in the filter's stead: it is the answer where the path's non-symmetric part fits the
+    /// stroke. Otherwise the filter is made again for the bisection, whose trials hold its
+    /// spectra and a segment's channel a core ([`LowPass::servo_peak_to_valley`], the same
+    /// figure to the bit); the channel at the cutoff found is made whole at the end.
+    fn lowest_cutoff(&self, stroke_mm: f64) -> (f64, Vec<f64>) {
+        let (s, grid) = (self.signal, self.grid);
+        let filter = || {
+            let heights = self.heights().into_owned();
+            LowPass::new(s, grid, heights, AUTO_MIN_CYCLES_PER_REV)
+        };
+        let (mut lo, mut hi) = (AUTO_MIN_CYCLES_PER_REV, grid.samples_per_rev as f64 / 2.0);
+        let at_lo = filter().into_channel(lo);
+        let servo = |i: usize| s.z_mm[i] - grid.interpolate(&at_lo, s.angle(i));
+        if peak_to_valley_at(s.len(), servo) <= stroke_mm {
+            return (lo, at_lo);
         }
+        drop(at_lo);
+        let filter = filter();
+        let fits = |k: f64| filter.servo_peak_to_valley(s, grid, k) <= stroke_mm;
         if !fits(hi) {
             return (hi, filter.into_channel(hi));
         }

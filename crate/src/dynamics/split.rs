@@ -239,7 +239,7 @@ pub fn response(k: f64, k_c: f64) -> f64 {
     1.0 / (1.0 + (k / k_c).abs().powi(2 * BUTTERWORTH_ORDER))
 }
 
-/// Grid samples a segment of the low-pass gives at most ([`LowPass`]; records of about
+/// Grid samples a segment of the low-pass gives at most (module docs; records of about
 /// 32 MiB): a longer grid is filtered segment by segment, so that the automatic split's trials
 /// hold the segments' spectra (about one record of the grid in all) and a segment's channel a
 /// core, not a channel of the whole grid beside a spectrum of it.

@@ -332,6 +332,15 @@ mod tests {
     }
 
     #[test]
+    fn mapped_indices_are_each_value_in_order() {
+        for n in [0usize, 1, 2, 3, 17, 1000] {
+            let value = |i: usize| (i * i) as f64 - 0.5;
+            let expected: Vec<f64> = (0..n).map(value).collect();
+            assert_eq!(map_indices(n, value), expected, "n = {n}");
+        }
+    }
+
+    #[test]
     fn the_first_error_in_order_wins() {
         let mut out = vec![0u8; 1000];
         let e = fill_chunks(&mut out, |first, part| {

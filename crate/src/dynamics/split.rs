@@ -30,10 +30,11 @@
 //! [`SEGMENT_MARGIN_CYCLES`]`/k` revolutions (k the lowest cutoff applied), at least
 //! [`SEGMENT_MARGIN_REVS`], beyond either side where it meets another, over which the impulse
 //! response falls by 2e-17, so that a segment's samples are the whole record's to the
-//! rounding of its own transform (to pm at cutoffs near the grid's Nyquist frequency). The automatic split's trials then hold the segments' spectra, about one
-//! record of the grid, and a segment's channel on each core, not a whole channel beside a
-//! whole spectrum; the channel at the cutoff found is made whole once, each segment's spectrum
-//! let go as its samples are in.
+//! rounding of its own transform (to pm at cutoffs near the grid's Nyquist frequency). The
+//! automatic split's trials then hold the segments' spectra, about one record of the grid, and
+//! a segment's channel on each core, not a whole channel beside a whole spectrum; the channel
+//! at the cutoff found is made whole once, each segment's spectrum let go as its samples are
+//! in.
 //!
 //! **Automatic** ([`SplitSpec::Auto`], needs [`SplitLimits`]): the slide alone (`Z = z`,
 //! `W = 0`) if z keeps within the slide's velocity, acceleration and bandwidth; otherwise the
@@ -253,7 +254,8 @@ pub const SEGMENT_MARGIN_CYCLES: f64 = 16.0;
 
 /// The least margin where segments meet, revolutions: the automatic split's at its lowest
 /// cutoff. A cutoff near the grid's Nyquist frequency leaves the response cut off there, whose
-/// impulse response decays only as 1/t² (pm over this margin: `a_filter_in_segments_is_the_whole_records`).
+/// impulse response decays only as 1/t²: a few pm over this margin
+/// (`a_filter_in_segments_is_the_whole_records`).
 pub const SEGMENT_MARGIN_REVS: usize = 2 * EXTENSION_REVS;
 
 /// The zero-phase low-pass of one grid signal at any cutoff: the (real-input) FFT of the
@@ -300,19 +302,20 @@ impl LowPass {
         let margin = revs.max(SEGMENT_MARGIN_REVS) * m;
         let ends = Ends::of(grid, &heights);
         let layout = segments(grid.len(), m, margin, most);
-        let record = |start: isize, len: usize| ends.record(signal, m, start, len);
         let segments = match layout.as_slice() {
             [(start, len, _)] => {
                 let head = start.unsigned_abs();
-                vec![Segment::of(
-                    ends.extend(heights, head, len - grid.len() - head),
-                    &layout[0],
-                )]
+                let tail = len - grid.len() - head;
+                vec![Segment::of(|| ends.extend(heights, head, tail), &layout[0])]
             }
             _ => {
                 drop(heights);
+                let ends = &ends;
+                let record = |&(start, len, _): &(isize, usize, Range<usize>)| {
+                    move || ends.record(signal, m, start, len)
+                };
                 (layout.iter())
-                    .map(|part| Segment::of(record(part.0, part.1), part))
+                    .map(|part| Segment::of(record(part), part))
                     .collect()
             }
         };
@@ -380,12 +383,16 @@ impl Segment {
         self.inverse.record(bins)
     }
 
-    /// The segment of the extended signal's `record` laid out as `(start, len, core)`.
-    fn of(record: Vec<f64>, (start, len, core): &(isize, usize, Range<usize>)) -> Self {
+    /// The segment of the extended signal's record that `make` gives, laid out as `(start,
+    /// len, core)`.
+    fn of(
+        make: impl FnOnce() -> Vec<f64>,
+        (start, len, core): &(isize, usize, Range<usize>),
+    ) -> Self {
+        // The record made while its transform is made on a second core, then transformed
+        // while the inverse is made there.
+        let (record, forward) = both(make, || forward_plan(*len));
         debug_assert_eq!(record.len(), *len);
-        // The record's transform made on a second core while it is made, then run while the
-        // inverse is made there.
-        let forward = forward_plan(*len);
         let (spectrum, inverse) = both(|| forward.spectrum(record), || inverse_plan(*len));
         Self {
             spectrum,

@@ -686,7 +686,7 @@ impl Stretch {
 
 /// The first index in `from..to` where `before` stops holding (`to` if it never does), for a
 /// `before` that holds up to some index and not after it (a binary search).
-fn first_past(from: usize, to: usize, before: impl Fn(usize) -> bool) -> usize {
+pub(crate) fn first_past(from: usize, to: usize, before: impl Fn(usize) -> bool) -> usize {
     let (mut lo, mut hi) = (from, to);
     while lo < hi {
         let mid = lo + (hi - lo) / 2;
@@ -725,7 +725,13 @@ pub fn extremes_at(n: usize, value: impl Fn(usize) -> f64 + Sync) -> (f64, f64) 
     let Ok(()) = fill_each(&mut found, |k| {
         Ok::<_, Infallible>(extremes((k * size..n.min((k + 1) * size)).map(&value)))
     });
-    (found.iter()).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &(lo, hi)| {
+    merged(found)
+}
+
+/// The smallest and largest of the `(smallest, largest)` found in parts (a part with no
+/// values found `(∞, −∞)`).
+pub(crate) fn merged(parts: impl IntoIterator<Item = (f64, f64)>) -> (f64, f64) {
+    (parts.into_iter()).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (lo, hi)| {
         (a.min(lo), b.max(hi))
     })
 }
@@ -741,7 +747,7 @@ pub fn peak_to_valley(values: impl IntoIterator<Item = f64>) -> f64 {
 }
 
 /// Largest minus smallest of `(smallest, largest)` (0 for none).
-fn spread((lo, hi): (f64, f64)) -> f64 {
+pub(crate) fn spread((lo, hi): (f64, f64)) -> f64 {
     if hi >= lo { hi - lo } else { 0.0 }
 }
 

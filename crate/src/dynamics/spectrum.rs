@@ -331,13 +331,17 @@ pub fn amplitude_spectrum_and_bands_on(
     };
     let heights_residual =
         |heights| positive_speed(spindle_rpm).then(|| residual_of(grid, heights));
-    if heights.len() != grid.len() {
+    // Records of another length than the grid's: each figure alone.
+    let separately = |heights, values| {
         let (spectrum, band) = amplitude_spectrum_of(grid, heights, spindle_rpm, max_bins);
-        return (
+        (
             spectrum,
             band,
-            highest_significant_cycles_per_rev(grid, values()),
-        );
+            highest_significant_cycles_per_rev(grid, values),
+        )
+    };
+    if heights.len() != grid.len() {
+        return separately(heights, values());
     }
     if in_place(len) {
         let (heights, forward) = both(|| heights_residual(heights), || forward_plan(len));
@@ -351,12 +355,7 @@ pub fn amplitude_spectrum_and_bands_on(
     }
     let values = values();
     if values.len() != grid.len() {
-        let (spectrum, band) = amplitude_spectrum_of(grid, heights, spindle_rpm, max_bins);
-        return (
-            spectrum,
-            band,
-            highest_significant_cycles_per_rev(grid, values),
-        );
+        return separately(heights, values);
     }
     let ((heights, values), forward) = both(
         || (heights_residual(heights), residual_of(grid, values)),

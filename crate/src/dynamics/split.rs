@@ -58,8 +58,8 @@
 //! k*. No speed helps when the stroke fails.
 
 use crate::dynamics::path_signal::{
-    AngleExtremes, PathSignal, SignalError, UniformSignal, extremes, hz, omega, peak_to_valley,
-    peak_to_valley_at,
+    AngleExtremes, PathSignal, SignalError, UniformSignal, extremes, first_past, hz, merged, omega,
+    peak_to_valley, peak_to_valley_at, spread,
 };
 use crate::dynamics::real_transform::RealInverse;
 use crate::dynamics::spectrum::{
@@ -338,17 +338,15 @@ impl LowPass {
             let channel = segment.channel(self.samples_per_rev, k_c);
             let at = |j: usize| channel[(j as isize - segment.start) as usize];
             let starts_before = |j: usize| move |i: usize| interval(i).0 < j;
-            let first = first_point(signal.len(), starts_before(segment.core.start));
-            let last = first_point(signal.len(), starts_before(segment.core.end));
+            let first = first_past(0, signal.len(), starts_before(segment.core.start));
+            let last = first_past(first, signal.len(), starts_before(segment.core.end));
             let servo = (first..last).map(|i| {
                 let (j, t) = interval(i);
                 signal.z_mm[i] - (at(j) + t * (at(j + 1) - at(j)))
             });
             Ok::<_, Infallible>(extremes(servo))
         });
-        // Segments without points found nothing: (∞, −∞).
-        let met = found.into_iter().filter(|(lo, hi)| lo <= hi);
-        peak_to_valley(met.flat_map(|(lo, hi)| [lo, hi]))
+        spread(merged(found))
     }
 
     /// The filtered grid signal at cutoff `k_c` cycles per revolution, each segment's spectrum
@@ -401,17 +399,6 @@ impl Segment {
             core: core.clone(),
         }
     }
-}
-
-/// The first point from which `before` stops holding (`n` if it never does), for a `before`
-/// that holds up to some point and not after it.
-fn first_point(n: usize, before: impl Fn(usize) -> bool) -> usize {
-    let (mut lo, mut hi) = (0, n);
-    while lo < hi {
-        let mid = lo + (hi - lo) / 2;
-        if before(mid) { lo = mid + 1 } else { hi = mid }
-    }
-    lo
 }
 
 /// The low-pass's records for a grid of `n` samples at `m` a revolution with `margin` samples

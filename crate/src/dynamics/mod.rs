@@ -34,10 +34,10 @@ pub mod split;
 
 use crate::dynamics::axis_checks::{AxisReport, AxisSample, check_axes};
 use crate::dynamics::fts_grid::{FtsGrid, FtsGridReport, ServoPath};
-use crate::dynamics::path_signal::{PathSignal, UniformSignal, extremes, hz, peak_to_valley};
+use crate::dynamics::path_signal::{PathSignal, extremes, hz, peak_to_valley};
 use crate::dynamics::spectrum::{
-    BandFrequency, Spectrum, amplitude_spectrum_and_bands_on, highest_significant_cycles_per_rev,
-    highest_significant_cycles_per_rev_beside, instantaneous_frequency_of,
+    BandFrequency, Spectrum, amplitude_spectrum_and_bands_on,
+    highest_significant_cycles_per_rev_at, instantaneous_frequency_of,
 };
 use crate::dynamics::split::{Limit, SplitError, SplitLimits, Verdict, servo_share, split_on};
 use crate::job::Job;
@@ -93,16 +93,18 @@ pub const MAX_POINTS: u64 = 30_000_000;
 /// its step rule: [`PathSignal::for_spiral`]) and at most two records of the grid, 8 bytes a
 /// sample each: on a grid of up to [`split::SEGMENT_SAMPLES`] the low-pass's spectrum and one
 /// trial channel (both of the grid extended by [`split::EXTENSION_REVS`] turns at either end:
-/// [`record_samples`]). A longer grid is low-passed in segments, whose spectra are about one
-/// record in all, and every other stage holds one record beside the path's columns and the
-/// slide's share at the points: the instantaneous frequency comes first, stretch by stretch
-/// in records of a stretch's length ([`spectrum::instantaneous_frequency`]); the spectrum and
-/// X's figure take the grid's heights and then its radii, one after the other; the low-pass
-/// extends the heights in their memory; the servo's figure takes the slide's channel on the
-/// grid, made `z − Z` in its memory; Z's figure takes the slide's share resampled. Every
-/// transform runs in its record's memory, every residual and amplitude spectrum too. So the
-/// figure is room to spare for a long grid: 1.13–1.18 GB of peak resident set measured on the
-/// 28.4 M-point HCAA sine grid (51 M samples, 16 bytes a point) against 1.70 GB estimated.
+/// [`record_samples`]). A longer grid is low-passed in segments, one at a time at one cutoff
+/// and about one record in all for a bisection, and every other stage holds at most one
+/// record beside the path's columns: the instantaneous frequency comes first, stretch by
+/// stretch in records of a stretch's length ([`spectrum::instantaneous_frequency`]); the
+/// spectrum and X's figure take the grid's heights and then its radii, one after the other;
+/// the low-pass's segments give the slide's share at the points, the channel never made whole;
+/// the servo's and Z's bandwidth figures then take W and Z resampled in single precision, 4
+/// bytes a sample ([`spectrum::highest_significant_cycles_per_rev_at`]), beside the slide's
+/// share. Every transform runs in its record's memory, every residual and amplitude spectrum
+/// too. So the figure is room to spare for a long grid: 0.96–0.98 GB of peak resident set
+/// measured on the 28.4 M-point HCAA sine grid (51 M samples, 16 bytes a point) against 1.70 GB
+/// estimated; at the end the path, Z and W at the points alone take 0.91 GB of it.
 pub const BYTES_PER_SAMPLE: u64 = 24;
 
 /// [`BYTES_PER_SAMPLE`] for a grid of at most [`MID_GRID_SAMPLES`] samples, whose records (at
@@ -585,7 +587,6 @@ impl Dynamics {
         };
         // A split path's Z figure takes the slide's share resampled on the grid: the grid's own
         // heights are let go first.
-        let grid_samples = uniform.as_ref().map_or(0, UniformSignal::len);
         if let Ok(g) = uniform.as_mut() {
             g.z_mm = Vec::new();
         }
@@ -600,18 +601,12 @@ impl Dynamics {
             || check_axes(samples, machine),
             || {
                 grid.map(|g| {
-                    let cpr = match &z_slide {
-                        Some(z) => {
-                            highest_significant_cycles_per_rev_beside(g, grid_samples, || {
-                                signal.values_at(per_rev, z)
-                            })
+                    let cpr = match (&z_slide, z_band_cpr) {
+                        (Some(z), _) => highest_significant_cycles_per_rev_at(signal, g, |i| z[i]),
+                        (None, Some(k)) => k,
+                        (None, None) => {
+                            highest_significant_cycles_per_rev_at(signal, g, |i| signal.z_mm[i])
                         }
-                        None => z_band_cpr.unwrap_or_else(|| {
-                            highest_significant_cycles_per_rev(
-                                g,
-                                signal.values_at(per_rev, &signal.z_mm),
-                            )
-                        }),
                     };
                     hz(cpr, rpm)
                 })

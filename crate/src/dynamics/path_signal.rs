@@ -33,8 +33,10 @@
 //! made again where they are used ([`UniformSignal::heights`], [`PathSignal::values_at`],
 //! [`PathSignal::radii_at`] the grid's rate: the same expressions, so the same bits; the path
 //! is checked once, when its grid is first made), and a residual is
-//! taken in its record's memory ([`UniformSignal::subtract_symmetric_part`]): the dynamics hold
-//! at most two records of the grid ([`crate::dynamics::BYTES_PER_SAMPLE`]).
+//! taken in its record's memory ([`UniformSignal::subtract_symmetric_part`]), or made a block
+//! at a time and rounded to single precision ([`UniformSignal::narrow_residual`]): the dynamics
+//! hold at most one record of the grid in double precision beside the path, or two on a grid
+//! of one low-pass segment ([`crate::dynamics::BYTES_PER_SAMPLE`]).
 //!
 //! **Rotationally symmetric part** (paper 002, "surface decomposition": a rotationally
 //! symmetric surface cut by X, C and Z plus a freeform remainder). On a spiral each radius is
@@ -797,20 +799,6 @@ impl UniformSignal {
         }
     }
 
-    /// Each sample `v` of `record` (one a sample) made `h − v`, `h` the height there
-    /// ([`Self::heights`], made in place where they were let go: no second record).
-    pub fn heights_less(&self, signal: &PathSignal, record: &mut [f64]) {
-        if self.z_mm.len() == self.samples {
-            record
-                .iter_mut()
-                .zip(&self.z_mm)
-                .for_each(|(v, h)| *v = h - *v);
-        } else if signal.len() >= 2 && record.len() == self.samples {
-            let height = |i: usize| signal.z_mm[i];
-            signal.resample_with(height, self.samples_per_rev, 0, record, |v, h| *v = h - *v);
-        }
-    }
-
     /// Angle step, radians.
     pub fn step_rad(&self) -> f64 {
         TAU / self.samples_per_rev as f64
@@ -914,6 +902,43 @@ impl UniformSignal {
         }
     }
 
+    /// [`Self::subtract_symmetric_part`] of the `n` samples that `fill(first, block)` writes
+    /// (the samples `first …` in `block`), each rounded to single precision: to the bit the
+    /// double-precision residual rounded. The samples are made `block` at a time and held a
+    /// block and a revolution at a time (the triangle means read a revolution back), so that
+    /// only the single-precision record is held whole: for a bandwidth figure of a long grid.
+    pub(crate) fn narrow_residual(
+        &self,
+        n: usize,
+        block: usize,
+        fill: impl Fn(usize, &mut [f64]),
+    ) -> Vec<f32> {
+        let m = self.samples_per_rev;
+        if n < 2 * m - 1 {
+            let mut values = vec![0.0; n];
+            fill(0, &mut values);
+            self.subtract_symmetric_part(&mut values);
+            return values.into_iter().map(|v| v as f32).collect();
+        }
+        let window = std::cell::RefCell::new(Window::new(n, m + 1, block.max(m), fill));
+        let value = |j: usize| window.borrow_mut().value(j);
+        let head: Vec<f64> = (0..m - 1).map(value).collect();
+        let mut out = vec![0.0f32; n];
+        let mut ends = EndMeans::new(n, m);
+        triangle_means(n, m, value, |c, mean| {
+            ends.offer(c, mean);
+            out[c] = (value(c) - mean) as f32;
+        });
+        let at = ends.extrapolation();
+        for j in (0..m - 1).chain(n - m + 1..n) {
+            if let Some(e) = at(j) {
+                let v = head.get(j).copied().unwrap_or_else(|| value(j));
+                out[j] = (v - e) as f32;
+            }
+        }
+        out
+    }
+
     /// `values` on the grid, linearly interpolated at the path's angles (the last grid interval
     /// extended by at most one step past the grid's end).
     pub fn at_path(&self, values: &[f64], angle_rad: &[f64]) -> Vec<f64> {
@@ -975,6 +1000,50 @@ fn triangle_means(
         sum2 += sum - ring[slot];
         ring[slot] = sum;
         each(k + m - 1, base + sum2 / norm);
+    }
+}
+
+/// Samples `lo … lo + len − 1` of a record of `n` made on demand by `fill(first, block)`, in
+/// order: a sample past the end makes the next `block` samples, keeping the `back` before it.
+struct Window<F> {
+    fill: F,
+    n: usize,
+    back: usize,
+    block: usize,
+    lo: usize,
+    held: Vec<f64>,
+}
+
+impl<F: Fn(usize, &mut [f64])> Window<F> {
+    fn new(n: usize, back: usize, block: usize, fill: F) -> Self {
+        Self {
+            fill,
+            n,
+            back,
+            block,
+            lo: 0,
+            held: Vec::with_capacity(back + block),
+        }
+    }
+
+    /// Sample `j`: at least the `back` samples before the latest one made.
+    #[inline]
+    fn value(&mut self, j: usize) -> f64 {
+        if j >= self.lo + self.held.len() {
+            self.advance(j);
+        }
+        self.held[j - self.lo]
+    }
+
+    /// Makes the block from sample `j` on, keeping the `back` samples before it.
+    #[cold]
+    fn advance(&mut self, j: usize) {
+        let end = self.lo + self.held.len();
+        let lo = j.saturating_sub(self.back).clamp(self.lo, end);
+        self.held.drain(..lo - self.lo);
+        self.held.resize((j + self.block).min(self.n) - lo, 0.0);
+        (self.fill)(end, &mut self.held[end - lo..]);
+        self.lo = lo;
     }
 }
 
@@ -1442,18 +1511,43 @@ pub(crate) mod tests {
             s.resample_into(|i| z[i], m, 0, &mut serial, |v, x| *v = x);
             assert_eq!(bits(&s.values_at(m, &z)), bits(&serial), "{m} a revolution");
         }
-        // The heights less a record, in its memory: held or made again, the same bits as the
-        // subtraction of the heights' own record.
-        let mut grid = s.uniform().unwrap();
-        let record: Vec<f64> = (0..grid.len()).map(|j| (j as f64 * 0.37).cos()).collect();
-        let expected: Vec<f64> = grid.z_mm.iter().zip(&record).map(|(h, v)| h - v).collect();
-        for held in [true, false] {
-            if !held {
-                grid.z_mm = Vec::new();
+    }
+
+    #[test]
+    fn a_residual_in_single_precision_is_the_double_one_rounded_to_the_bit() {
+        // A sag of millimetres with tones of micrometres on it, made in blocks from under a
+        // revolution to the whole record: each sample is the double-precision residual (taken
+        // in place) rounded, the extrapolated ends included, and each is made once. A record
+        // shorter than two revolutions has the straight line taken off, as in place.
+        let m = 64;
+        let value = |j: usize| {
+            let a = j as f64 * TAU / m as f64;
+            4.5 - 2e-4 * a * a.sqrt() + 1e-3 * (5.0 * a).sin() + 2e-4 * (29.3 * a).cos()
+        };
+        for n in [2 * m - 2, 2 * m - 1, 5 * m + 3, 40_000] {
+            let grid = UniformSignal {
+                samples_per_rev: m,
+                samples: n,
+                z_mm: Vec::new(),
+            };
+            let mut double: Vec<f64> = (0..n).map(value).collect();
+            grid.subtract_symmetric_part(&mut double);
+            for block in [1, m / 2, m, 1000, n] {
+                let made = std::cell::Cell::new(0);
+                let fill = |first: usize, out: &mut [f64]| {
+                    assert_eq!(first, made.get(), "blocks in order");
+                    made.set(first + out.len());
+                    for (j, v) in (first..).zip(out.iter_mut()) {
+                        *v = value(j);
+                    }
+                };
+                let narrow = grid.narrow_residual(n, block, fill);
+                assert_eq!((narrow.len(), made.get()), (n, n), "n {n}, block {block}");
+                for (j, (a, b)) in narrow.iter().zip(&double).enumerate() {
+                    let want = (*b as f32).to_bits();
+                    assert_eq!(a.to_bits(), want, "n {n}, block {block}: sample {j}");
+                }
             }
-            let mut w = record.clone();
-            grid.heights_less(&s, &mut w);
-            assert_eq!(bits(&w), bits(&expected), "heights held: {held}");
         }
     }
 

@@ -73,11 +73,16 @@
 //! with its output, and a plan of 12 whose making costs about as much as running it: records of
 //! one length share a plan ([`amplitude_spectrum_and_bands_on`]) and, in the spectrum and
 //! the bandwidth figures, a plan is made on a second core while its record is prepared; the
-//! plans are deterministic, so the results are the same to the bit).
+//! plans are deterministic, so the results are the same to the bit). A channel's bandwidth
+//! figure on a long grid is taken in single precision, 4 bytes a sample
+//! ([`highest_significant_cycles_per_rev_at`]): it reads where the amplitudes cross 1 % of the
+//! largest, which f32's rounding (a few millionths of the largest) does not move but for a bin
+//! that close to the threshold, and its residual is taken in double precision before it is
+//! rounded, so the sag's millimetres do not swamp the micrometres analysed.
 
 use crate::dynamics::path_signal::{PathSignal, Stretch, UniformSignal, hz, residual_gain};
-use crate::dynamics::real_transform::{RealForward, RealInverse, in_place, real_values_of};
-use crate::parallel::{both, fill_each};
+use crate::dynamics::real_transform::{self, RealForward, RealInverse, in_place, real_values_of};
+use crate::parallel::{both, fill_chunks, fill_each};
 use rustfft::num_complex::Complex;
 use serde::Serialize;
 use std::convert::Infallible;
@@ -157,16 +162,28 @@ fn hann_amplitudes_by(forward: &RealForward, mut x: Vec<f64>) -> Vec<f64> {
     if n < 2 {
         return Vec::new();
     }
-    // The window's sum (its gain) added up as it is applied: one cosine a sample.
-    let mut gain = 0.0;
-    for (j, v) in x.iter_mut().enumerate() {
-        let w = 0.5 - 0.5 * (TAU * j as f64 / n as f64).cos();
-        gain += w;
-        *v *= w;
-    }
+    let gain = apply_hann(&mut x);
     real_values_of(forward.spectrum(x), |j, c| {
         c.norm() * if j == 0 { 1.0 } else { 2.0 } / gain
     })
+}
+
+/// The Hann window applied to `x` in place, and its sum (its gain), added up as it is applied:
+/// one cosine a sample.
+fn apply_hann(x: &mut [f64]) -> f64 {
+    let n = x.len();
+    let mut gain = 0.0;
+    for (j, v) in x.iter_mut().enumerate() {
+        let w = hann(j, n);
+        gain += w;
+        *v *= w;
+    }
+    gain
+}
+
+/// The Hann window of `n` samples at sample `j`.
+fn hann(j: usize, n: usize) -> f64 {
+    0.5 - 0.5 * (TAU * j as f64 / n as f64).cos()
 }
 
 /// The forward real-input transform of `len` samples ([`RealForward`]: in place for long
@@ -462,6 +479,58 @@ fn highest_significant_of(a: &[f64], samples_per_rev: usize, len: usize) -> f64 
         .rposition(|&v| v >= floor)
         .map_or(0.0, |j| j as f64 * samples_per_rev as f64 / len as f64)
 }
+
+/// [`highest_significant_cycles_per_rev`] of `value(i)` at the points of `signal` resampled on
+/// its `grid` ([`PathSignal::values_at`]'s samples): a channel's bandwidth figure. A grid whose
+/// transform runs in place ([`in_place`]) is held in single precision, 4 bytes a sample: its
+/// residual made a block at a time ([`UniformSignal::narrow_residual`], [`NARROW_BLOCK`]) and
+/// transformed in its memory ([`real_transform::narrow_spectrum`]). Its amplitudes are those
+/// of double precision within a few millionths of the largest, so the figure is the same
+/// unless a bin's amplitude lies that close to [`SIGNIFICANT_FRACTION`] of the largest
+/// (`a_long_grids_figure_in_single_precision_is_the_double_ones`). A shorter grid's figure is
+/// [`highest_significant_cycles_per_rev_beside`]'s, to the bit.
+pub fn highest_significant_cycles_per_rev_at(
+    signal: &PathSignal,
+    grid: &UniformSignal,
+    value: impl Fn(usize) -> f64 + Sync,
+) -> f64 {
+    let (n, m) = (grid.len(), grid.samples_per_rev);
+    let fill = |first: usize, block: &mut [f64]| {
+        signal.resample_with(&value, m, first, block, |slot, v| *slot = v);
+    };
+    if !in_place(fast_length(n, false)) || signal.len() < 2 {
+        return highest_significant_cycles_per_rev_beside(grid, n, || {
+            let mut values = vec![0.0; n];
+            fill(0, &mut values);
+            values
+        });
+    }
+    let len = fast_length(n, true);
+    let mut residual = grid.narrow_residual(n, NARROW_BLOCK, fill);
+    let Ok(()) = fill_chunks(&mut residual, |first, part| {
+        for (j, v) in (first..).zip(part.iter_mut()) {
+            *v = (f64::from(*v) * hann(j, n)) as f32;
+        }
+        Ok::<(), Infallible>(())
+    });
+    let bins = real_transform::narrow_spectrum(residual, len);
+    // Squared amplitudes, in units of the window's gain (n/2 exactly: its cosines sum to 0).
+    let squared = |j: usize| {
+        let (re, im) = (f64::from(bins[j].re), f64::from(bins[j].im));
+        (re * re + im * im) * if j == 0 { 1.0 } else { 4.0 }
+    };
+    let gain = n as f64 / 2.0;
+    let top = (0..bins.len()).map(squared).fold(0.0, f64::max).sqrt() / gain;
+    let floor = (SIGNIFICANT_FRACTION * top).max(NEGLIGIBLE_MM) * gain;
+    (0..bins.len())
+        .rev()
+        .find(|&j| squared(j) >= floor * floor)
+        .map_or(0.0, |j| j as f64 * m as f64 / len as f64)
+}
+
+/// Grid samples made at a time for a single-precision figure
+/// ([`highest_significant_cycles_per_rev_at`]): 2 MiB in double precision.
+pub const NARROW_BLOCK: usize = 1 << 18;
 
 /// The smallest length `2^a·3^b ≥ n` (even when `even`): rustfft transforms such lengths by
 /// its radix-2/3 kernels; a length with a large prime factor (a path of 1 000 001 points has
@@ -818,6 +887,31 @@ mod tests {
         assert_eq!(one_band.map(f64::to_bits), band.map(f64::to_bits));
         assert_eq!(one_radii.to_bits(), radii.to_bits());
         assert!((band.unwrap() - 17.5).abs() < 0.3, "{band:?}");
+    }
+
+    #[test]
+    fn a_long_grids_figure_in_single_precision_is_the_double_ones() {
+        // 1.1 M grid samples (transformed in place, padded to an even 2^a·3^b): a spiral sag of
+        // millimetres with tones of 1 µm at 5, 0.2 µm at 29.3 and 5 nm at 61 cycles a turn
+        // (below 1 % of the largest). The figure of the heights, and of the tones alone, made
+        // in single precision is the double-precision one, and lies at 29.3 cycles a turn
+        // (the Hann lobe's few bins above it).
+        let z = |r: f64, t: f64| {
+            0.3 * r * r + 1e-3 * (5.0 * t).sin() + 2e-4 * (29.3 * t).cos() + 5e-6 * (61.0 * t).sin()
+        };
+        let s = spiral(4300.0, 256, 4.0, 0.0009, z);
+        let g = s.uniform().unwrap();
+        let n = g.len();
+        assert!(in_place(fast_length(n, false)));
+        let tones: Vec<f64> = (0..s.len())
+            .map(|i| s.z_mm[i] - 0.3 * s.rho(i) * s.rho(i))
+            .collect();
+        for values in [&s.z_mm, &tones] {
+            let narrow = highest_significant_cycles_per_rev_at(&s, &g, |i| values[i]);
+            let double = highest_significant_cycles_per_rev(&g, s.values_at(256, values));
+            assert_eq!(narrow, double);
+            assert!((29.3..29.31).contains(&narrow), "{narrow} cycles a turn");
+        }
     }
 
     #[test]

@@ -30,11 +30,13 @@
 //! [`SEGMENT_MARGIN_CYCLES`]`/k` revolutions (k the lowest cutoff applied), at least
 //! [`SEGMENT_MARGIN_REVS`], beyond either side where it meets another, over which the impulse
 //! response falls by 2e-17, so that a segment's samples are the whole record's to the
-//! rounding of its own transform (to pm at cutoffs near the grid's Nyquist frequency). The
-//! automatic split's trials then hold the segments' spectra, about one record of the grid, and
-//! a segment's channel on each core, not a whole channel beside a whole spectrum; the channel
-//! at the cutoff found is made whole once, each segment's spectrum let go as its samples are
-//! in.
+//! rounding of its own transform (to pm at cutoffs near the grid's Nyquist frequency). Z at
+//! the points is read off each segment's channel in turn (a point whose grid interval ends in
+//! the next segment reads that end there), to the bit the whole channel interpolated, which is
+//! never made whole. At one cutoff (the low-pass split, and the automatic split's first trial
+//! at its lowest) each segment is made, filtered and read before the next is made: one
+//! segment's record is held beside the path. The automatic split's bisection holds the
+//! segments' spectra, about one record of the grid, and a segment's channel on each core.
 //!
 //! **Automatic** ([`SplitSpec::Auto`], needs [`SplitLimits`]): the slide alone (`Z = z`,
 //! `W = 0`) if z keeps within the slide's velocity, acceleration and bandwidth; otherwise the
@@ -47,8 +49,9 @@
 //!
 //! **Checks and speed.** A channel's velocity and acceleration are its largest slope and curvature
 //! against the spindle angle ([`PathSignal::angle_extremes`]) times ω and ω²; its bandwidth is the
-//! highest significant frequency of its non-symmetric part
-//! ([`crate::dynamics::spectrum::highest_significant_cycles_per_rev`]) in Hz; the stroke is W's PV.
+//! highest significant frequency of its non-symmetric part, the channel at the points resampled
+//! on the grid ([`crate::dynamics::spectrum::highest_significant_cycles_per_rev_at`]), in Hz;
+//! the stroke is W's PV.
 //! Every figure is computed once per revolution-angle, so at another speed n′ a velocity or
 //! bandwidth scales by n′/n, an acceleration by (n′/n)², the stroke not at all. Where a check fails
 //! the verdict is [`Verdict::Infeasible`] with the failing checks and the highest speed at which
@@ -63,11 +66,11 @@ use crate::dynamics::path_signal::{
 };
 use crate::dynamics::real_transform::RealInverse;
 use crate::dynamics::spectrum::{
-    fast_length, forward_plan, highest_significant_cycles_per_rev_beside, inverse_plan,
+    fast_length, forward_plan, highest_significant_cycles_per_rev_at, inverse_plan,
 };
 use crate::field::{FieldError, positive};
 use crate::job::SplitSpec;
-use crate::parallel::{both, fill_each, map_indices};
+use crate::parallel::{both, fill_chunks, fill_each, map_indices};
 use rustfft::num_complex::Complex;
 use serde::{Deserialize, Serialize};
 use std::borrow::Cow;
@@ -241,9 +244,10 @@ pub fn response(k: f64, k_c: f64) -> f64 {
 }
 
 /// Grid samples a segment of the low-pass gives at most (module docs; records of about
-/// 32 MiB): a longer grid is filtered segment by segment, so that the automatic split's trials
-/// hold the segments' spectra (about one record of the grid in all) and a segment's channel a
-/// core, not a channel of the whole grid beside a spectrum of it.
+/// 32 MiB): a longer grid is filtered segment by segment, so that a filter at one cutoff holds
+/// one segment at a time and the automatic split's bisection the segments' spectra (about one
+/// record of the grid in all) and a segment's channel a core, never a channel of the whole
+/// grid.
 pub const SEGMENT_SAMPLES: usize = 1 << 22;
 
 /// The margin of signal either side of a segment's samples where it meets another,
@@ -282,9 +286,7 @@ struct Segment {
 
 impl LowPass {
     /// The filter of `heights`, one a sample of `grid` (the grid of `signal`), for cutoffs of
-    /// at least `lowest_cpr` cycles per revolution: the whole record extended in their memory,
-    /// or for a longer grid the segments, each made from the path ([`PathSignal::values_at`]'s
-    /// samples, to the bit) once the heights' ends are read and the heights let go.
+    /// at least `lowest_cpr` cycles per revolution: its segments ([`Making`]), all held.
     fn new(signal: &PathSignal, grid: &UniformSignal, heights: Vec<f64>, lowest_cpr: f64) -> Self {
         Self::in_segments(signal, grid, heights, lowest_cpr, SEGMENT_SAMPLES)
     }
@@ -297,33 +299,31 @@ impl LowPass {
         lowest_cpr: f64,
         most: usize,
     ) -> Self {
-        let m = grid.samples_per_rev;
-        let revs = (SEGMENT_MARGIN_CYCLES / lowest_cpr).ceil() as usize;
-        let margin = revs.max(SEGMENT_MARGIN_REVS) * m;
-        let ends = Ends::of(grid, &heights);
-        let layout = segments(grid.len(), m, margin, most);
-        let segments = match layout.as_slice() {
-            [(start, len, _)] => {
-                let head = start.unsigned_abs();
-                let tail = len - grid.len() - head;
-                vec![Segment::of(|| ends.extend(heights, head, tail), &layout[0])]
-            }
-            _ => {
-                drop(heights);
-                let ends = &ends;
-                let record = |&(start, len, _): &(isize, usize, Range<usize>)| {
-                    move || ends.record(signal, m, start, len)
-                };
-                (layout.iter())
-                    .map(|part| Segment::of(record(part), part))
-                    .collect()
-            }
-        };
         Self {
-            segments,
+            segments: Making::new(signal, grid, heights, lowest_cpr, most).collect(),
             samples: grid.len(),
-            samples_per_rev: m,
+            samples_per_rev: grid.samples_per_rev,
         }
+    }
+
+    /// Z at the points of `signal` (on `grid`) with the slide's `heights` filtered at `k_c`
+    /// cycles per revolution alone: [`Self::into_points`] of [`Self::new`] to the bit, each
+    /// segment made and read at its points before the next is made, so that no more than one
+    /// segment's spectrum is held.
+    fn points(signal: &PathSignal, grid: &UniformSignal, heights: Vec<f64>, k_c: f64) -> Vec<f64> {
+        Self::points_in_segments(signal, grid, heights, k_c, SEGMENT_SAMPLES)
+    }
+
+    /// [`Self::points`] in segments of at most `most` samples (or 8 margins).
+    fn points_in_segments(
+        signal: &PathSignal,
+        grid: &UniformSignal,
+        heights: Vec<f64>,
+        k_c: f64,
+        most: usize,
+    ) -> Vec<f64> {
+        let segments = Making::new(signal, grid, heights, k_c, most);
+        points_of(segments, signal, grid, k_c)
     }
 
     /// The peak-to-valley of the servo's share `z − Z` at the points of `signal` (on `grid`)
@@ -349,23 +349,127 @@ impl LowPass {
         spread(merged(found))
     }
 
-    /// The filtered grid signal at cutoff `k_c` cycles per revolution, each segment's spectrum
-    /// let go once its samples are in.
+    /// The filtered grid signal at cutoff `k_c` cycles per revolution, made whole: the reference
+    /// the tests hold [`Self::into_points`] and the trials to.
+    #[cfg(test)]
     fn into_channel(self, k_c: f64) -> Vec<f64> {
-        let whole = self.segments.len() == 1;
         let mut out: Vec<f64> = Vec::new();
         for segment in self.segments {
-            let mut channel = segment.channel(self.samples_per_rev, k_c);
             let skip = (segment.core.start as isize - segment.start) as usize;
-            channel.truncate(skip + segment.core.len());
-            if whole {
-                channel.drain(..skip);
-                return channel;
-            }
-            out.reserve_exact(self.samples.saturating_sub(out.len()));
-            out.extend_from_slice(&channel[skip..]);
+            let core = segment.core.len();
+            let channel = segment.into_channel(self.samples_per_rev, k_c);
+            out.extend_from_slice(&channel[skip..skip + core]);
         }
         out
+    }
+
+    /// Z at the points of `signal` (on `grid`) with the slide filtered at `k_c` cycles per
+    /// revolution ([`points_of`]), each segment's spectrum let go once read.
+    fn into_points(self, signal: &PathSignal, grid: &UniformSignal, k_c: f64) -> Vec<f64> {
+        points_of(self.segments.into_iter(), signal, grid, k_c)
+    }
+}
+
+/// Z at the points of `signal` (on `grid`) with the slide filtered at `k_c` cycles per
+/// revolution, from the low-pass's `segments` in order, to the bit
+/// [`UniformSignal::interpolate`] of the whole filtered grid signal: each segment's channel
+/// made in its spectrum's memory and read at the points whose grid interval starts in its
+/// core (where the interval ends in the next core, its end is read there). The grid signal is
+/// never held whole.
+fn points_of(
+    segments: impl Iterator<Item = Segment>,
+    signal: &PathSignal,
+    grid: &UniformSignal,
+    k_c: f64,
+) -> Vec<f64> {
+    let (n, m) = (grid.len(), grid.samples_per_rev);
+    let interval = |i: usize| grid.interval(n, signal.angle(i));
+    let mut z: Vec<f64> = Vec::with_capacity(signal.len());
+    // Points in a core's last interval: their slot, the sample at the interval's start and the
+    // fraction of the step past it.
+    let mut pending: Vec<(usize, f64, f64)> = Vec::new();
+    for segment in segments {
+        let (start, core) = (segment.start, segment.core.clone());
+        let channel = segment.into_channel(m, k_c);
+        let at = |j: usize| channel[(j as isize - start) as usize];
+        for (i, v, t) in pending.drain(..) {
+            z[i] = v + t * (at(core.start) - v);
+        }
+        let from = z.len();
+        let starts_before = |j: usize| move |i: usize| interval(i).0 < j;
+        let inner = first_past(
+            from,
+            signal.len(),
+            starts_before(core.end.saturating_sub(1)),
+        );
+        let to = first_past(inner, signal.len(), starts_before(core.end));
+        z.resize(to, 0.0);
+        let Ok(()) = fill_chunks(&mut z[from..inner], |offset, part| {
+            for (i, slot) in (from + offset..).zip(part.iter_mut()) {
+                let (j, t) = interval(i);
+                *slot = at(j) + t * (at(j + 1) - at(j));
+            }
+            Ok::<(), Infallible>(())
+        });
+        pending.extend((inner..to).map(|i| {
+            let (j, t) = interval(i);
+            (i, at(j), t)
+        }));
+    }
+    z
+}
+
+/// The low-pass's segments of a grid signal, made one at a time in order
+/// ([`LowPass::in_segments`]): the whole record extended in the heights' memory, or for a
+/// longer grid each segment made from the path ([`PathSignal::values_at`]'s samples, to the
+/// bit) once the heights' ends are read and the heights let go.
+struct Making<'a> {
+    signal: &'a PathSignal,
+    samples_per_rev: usize,
+    ends: Ends,
+    /// The heights, where the grid is one record.
+    whole: Option<Vec<f64>>,
+    layout: std::vec::IntoIter<(isize, usize, Range<usize>)>,
+}
+
+impl<'a> Making<'a> {
+    /// The segments of `heights`, one a sample of `grid` (the grid of `signal`), for cutoffs of
+    /// at least `lowest_cpr` cycles per revolution, of at most `most` samples (or 8 margins).
+    fn new(
+        signal: &'a PathSignal,
+        grid: &UniformSignal,
+        heights: Vec<f64>,
+        lowest_cpr: f64,
+        most: usize,
+    ) -> Self {
+        let m = grid.samples_per_rev;
+        let revs = (SEGMENT_MARGIN_CYCLES / lowest_cpr).ceil() as usize;
+        let margin = revs.max(SEGMENT_MARGIN_REVS) * m;
+        let layout = segments(grid.len(), m, margin, most);
+        Self {
+            signal,
+            samples_per_rev: m,
+            ends: Ends::of(grid, &heights),
+            whole: (layout.len() == 1).then_some(heights),
+            layout: layout.into_iter(),
+        }
+    }
+}
+
+impl Iterator for Making<'_> {
+    type Item = Segment;
+
+    fn next(&mut self) -> Option<Segment> {
+        let part = self.layout.next()?;
+        let (ends, m) = (&self.ends, self.samples_per_rev);
+        Some(match self.whole.take() {
+            Some(heights) => {
+                let (head, n) = (part.0.unsigned_abs(), heights.len());
+                let tail = part.1 - n - head;
+                Segment::of(|| ends.extend(heights, head, tail), &part)
+            }
+            None => Segment::of(|| ends.record(self.signal, m, part.0, part.1), &part),
+        })
     }
 }
 
@@ -373,11 +477,22 @@ impl Segment {
     /// The record filtered at cutoff `k_c` cycles per revolution, on a grid of
     /// `samples_per_rev` (the whole record).
     fn channel(&self, samples_per_rev: usize, k_c: f64) -> Vec<f64> {
+        self.filtered(self.spectrum.clone(), samples_per_rev, k_c)
+    }
+
+    /// [`Self::channel`] made in the spectrum's memory.
+    fn into_channel(mut self, samples_per_rev: usize, k_c: f64) -> Vec<f64> {
+        let spectrum = std::mem::take(&mut self.spectrum);
+        self.filtered(spectrum, samples_per_rev, k_c)
+    }
+
+    /// The record whose spectrum is `bins` filtered at `k_c`, in their memory.
+    fn filtered(&self, mut bins: Vec<Complex<f64>>, samples_per_rev: usize, k_c: f64) -> Vec<f64> {
         let len = self.inverse.len();
         let cpr_per_bin = samples_per_rev as f64 / len as f64;
-        let bins: Vec<Complex<f64>> = (self.spectrum.iter().enumerate())
-            .map(|(j, c)| c * response(j as f64 * cpr_per_bin, k_c) / len as f64)
-            .collect();
+        for (j, c) in bins.iter_mut().enumerate() {
+            *c = *c * response(j as f64 * cpr_per_bin, k_c) / len as f64;
+        }
         self.inverse.record(bins)
     }
 
@@ -553,7 +668,11 @@ pub fn split_on(
     match spec {
         SplitSpec::Symmetric => {
             let symmetric = grid.symmetric_part(&ctx.heights());
-            Ok(ctx.finish(symmetric, None, limits, None))
+            let z = map_indices(signal.len(), |i| {
+                grid.interpolate(&symmetric, signal.angle(i))
+            });
+            drop(symmetric);
+            Ok(ctx.finish(z, None, limits, None))
         }
         SplitSpec::LowPass { cutoff_hz } => {
             let nyquist = hz(grid.samples_per_rev as f64 / 2.0, spindle_rpm);
@@ -568,10 +687,8 @@ pub fn split_on(
                 .into());
             }
             let k_c = cutoff_hz * 60.0 / spindle_rpm;
-            // The filter is let go before the checks' own transforms.
-            let filter = LowPass::new(signal, grid, ctx.heights().into_owned(), k_c);
-            let z_grid = filter.into_channel(k_c);
-            Ok(ctx.finish(z_grid, Some(k_c), limits, None))
+            let z = LowPass::points(signal, grid, ctx.heights().into_owned(), k_c);
+            Ok(ctx.finish(z, Some(k_c), limits, None))
         }
         SplitSpec::Auto => {
             let Some(limits) = limits else {
@@ -625,22 +742,21 @@ impl Context<'_> {
         self.grid.heights(self.signal)
     }
 
-    /// The split with slide channel `z_grid` on the grid: Z at the points by interpolation,
-    /// W = z − Z, and the verdict against `limits` (`other_rpm` a feasible speed found for
-    /// another split). Z at the points comes first; the channels' spectra then take `z_grid`
-    /// (the servo's in its memory), before W is made at the points.
+    /// The split with the slide's share `z` at the points: W = z − Z, and the verdict against
+    /// `limits` (`other_rpm` a feasible speed found for another split). The channels'
+    /// bandwidth figures come first, each a transform of the channel at the points resampled
+    /// on the grid ([`Self::bandwidths`]), before W is made at the points.
     fn finish(
         &self,
-        z_grid: Vec<f64>,
+        z: Vec<f64>,
         cutoff_cpr: Option<f64>,
         limits: Option<&SplitLimits>,
         other_rpm: Option<f64>,
     ) -> Split {
         let s = self.signal;
-        let z = map_indices(s.len(), |i| self.grid.interpolate(&z_grid, s.angle(i)));
         let bandwidths = limits.map(|_| {
             let w_is_zero = (0..s.len()).all(|i| s.z_mm[i] - z[i] == 0.0);
-            self.bandwidths(z_grid, cutoff_cpr, w_is_zero)
+            self.bandwidths(&z, cutoff_cpr, w_is_zero)
         });
         let w = servo_share(&s.z_mm, &z);
         let verdict = match (limits, bandwidths) {
@@ -663,7 +779,7 @@ impl Context<'_> {
         let (bandwidths, motion) = both(
             || match self.z_band_cpr {
                 Some(k) => (hz(k, self.rpm), 0.0),
-                None => self.bandwidths(self.heights().into_owned(), None, true),
+                None => self.bandwidths(z, None, true),
             },
             || self.motion_alone(z),
         );
@@ -687,63 +803,53 @@ impl Context<'_> {
 
     /// The lowest cutoff, cycles per revolution, in [[`AUTO_MIN_CYCLES_PER_REV`], M/2] at which
     /// W fits `stroke_mm` (M/2 when none does: the stroke check then fails), and the slide's
-    /// channel on the grid at that cutoff. The lowest is tried first on the whole channel, made
-    /// in the filter's stead: it is the answer where the path's non-symmetric part fits the
-    /// stroke. Otherwise the filter is made again for the bisection, whose trials hold its
-    /// spectra and a segment's channel a core ([`LowPass::servo_peak_to_valley`], the same
-    /// figure to the bit); the channel at the cutoff found is made whole at the end.
+    /// share at the points at that cutoff. The lowest is tried first, a segment at a time
+    /// ([`LowPass::points`]): it is the answer where the path's non-symmetric part fits the
+    /// stroke. Otherwise the filter is made for the bisection, whose trials hold its spectra
+    /// and a segment's channel a core ([`LowPass::servo_peak_to_valley`], the same figure to
+    /// the bit); Z at the cutoff found is made from the spectra at the end
+    /// ([`LowPass::into_points`]).
     fn lowest_cutoff(&self, stroke_mm: f64) -> (f64, Vec<f64>) {
         let (s, grid) = (self.signal, self.grid);
-        let filter = || {
-            let heights = self.heights().into_owned();
-            LowPass::new(s, grid, heights, AUTO_MIN_CYCLES_PER_REV)
-        };
         let (mut lo, mut hi) = (AUTO_MIN_CYCLES_PER_REV, grid.samples_per_rev as f64 / 2.0);
-        let at_lo = filter().into_channel(lo);
-        let servo = |i: usize| s.z_mm[i] - grid.interpolate(&at_lo, s.angle(i));
-        if peak_to_valley_at(s.len(), servo) <= stroke_mm {
+        let at_lo = LowPass::points(s, grid, self.heights().into_owned(), lo);
+        if peak_to_valley_at(s.len(), |i| s.z_mm[i] - at_lo[i]) <= stroke_mm {
             return (lo, at_lo);
         }
         drop(at_lo);
-        let filter = filter();
+        let filter = LowPass::new(s, grid, self.heights().into_owned(), lo);
         let fits = |k: f64| filter.servo_peak_to_valley(s, grid, k) <= stroke_mm;
         if !fits(hi) {
-            return (hi, filter.into_channel(hi));
+            return (hi, filter.into_points(s, grid, hi));
         }
         while hi / lo > 1.0 + AUTO_PRECISION {
             let mid = (lo * hi).sqrt();
             if fits(mid) { hi = mid } else { lo = mid }
         }
-        (hi, filter.into_channel(hi))
+        (hi, filter.into_points(s, grid, hi))
     }
 
-    /// The bandwidth figures, Hz, of the slide's channel `z_grid` on the grid and of the
-    /// servo's: the slide's is the cutoff when there is one, else Z's highest significant
-    /// frequency; the servo's is that of W taken on the grid as `z − Z` (in `z_grid`'s
-    /// memory), 0 when W is 0 at every point (`w_is_zero`).
-    fn bandwidths(
-        &self,
-        mut z_grid: Vec<f64>,
-        cutoff_cpr: Option<f64>,
-        w_is_zero: bool,
-    ) -> (f64, f64) {
-        // Each channel made on the grid while its transform is made on a second core.
-        let band = |make: &mut dyn FnMut() -> Vec<f64>| {
-            let cpr = highest_significant_cycles_per_rev_beside(self.grid, self.grid.len(), make);
-            hz(cpr, self.rpm)
+    /// The bandwidth figures, Hz, of the slide's share `z` at the points and of the servo's:
+    /// the slide's is the cutoff when there is one, else Z's highest significant frequency;
+    /// the servo's is that of W = z − Z, 0 when W is 0 at every point (`w_is_zero`). Each is
+    /// the channel at the points resampled on the grid
+    /// ([`highest_significant_cycles_per_rev_at`]: in single precision on a long grid).
+    fn bandwidths(&self, z: &[f64], cutoff_cpr: Option<f64>, w_is_zero: bool) -> (f64, f64) {
+        let s = self.signal;
+        let band = |value: &(dyn Fn(usize) -> f64 + Sync)| {
+            hz(
+                highest_significant_cycles_per_rev_at(s, self.grid, value),
+                self.rpm,
+            )
         };
         let slide = match cutoff_cpr {
             Some(k) => hz(k, self.rpm),
-            None if w_is_zero => band(&mut || std::mem::take(&mut z_grid)),
-            None => band(&mut || z_grid.clone()),
+            None => band(&|i| z[i]),
         };
         let fts = if w_is_zero {
             0.0
         } else {
-            band(&mut || {
-                self.grid.heights_less(self.signal, &mut z_grid);
-                std::mem::take(&mut z_grid)
-            })
+            band(&|i| s.z_mm[i] - z[i])
         };
         (slide, fts)
     }
@@ -865,7 +971,7 @@ fn round_down(x: f64, digits: i32) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dynamics::path_signal::tests::spiral;
+    use crate::dynamics::path_signal::tests::{arc_spiral, spiral};
     use std::f64::consts::TAU;
 
     /// Amplitude of the tone of `k` cycles/rev in `v` over the points from revolution
@@ -1011,6 +1117,33 @@ mod tests {
                 assert!(inner <= meet, "k {k}: {inner} mm where the segments meet");
                 assert!(all <= 1e-7, "k {k}: {all} mm");
                 assert!((pa - pb).abs() <= 1e-7, "k {k}: PV {pa} against {pb}");
+            }
+        }
+    }
+
+    #[test]
+    fn z_at_the_points_is_the_whole_channel_read_there_to_the_bit() {
+        // A constant-arc spiral (points between grid samples) filtered whole and in segments: Z at the points is the whole filtered grid signal interpolated there, to
+        // the bit, points in a core's last interval included.
+        let z = |r: f64, t: f64| 0.3 * r * r + 1e-3 * (5.0 * t).sin() + 2e-4 * (29.0 * t).cos();
+        let s = arc_spiral(900.0, 4.0, 0.004, 0.5, z);
+        let g = s.uniform().unwrap();
+        for most in [usize::MAX, 16_384] {
+            let filter = || LowPass::in_segments(&s, &g, g.z_mm.clone(), 0.5, most);
+            let count = filter().segments.len();
+            assert_eq!(count == 1, most == usize::MAX, "{count} segments");
+            for k in [0.5, 7.0] {
+                let channel = filter().into_channel(k);
+                assert_eq!(channel.len(), g.len());
+                let held = filter().into_points(&s, &g, k);
+                let one_by_one = LowPass::points_in_segments(&s, &g, g.z_mm.clone(), k, most);
+                for z in [held, one_by_one] {
+                    assert_eq!(z.len(), s.len());
+                    for (i, v) in z.iter().enumerate() {
+                        let want = g.interpolate(&channel, s.angle(i)).to_bits();
+                        assert_eq!(v.to_bits(), want, "{count} segments, k {k}: point {i}");
+                    }
+                }
             }
         }
     }

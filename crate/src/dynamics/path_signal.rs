@@ -59,13 +59,17 @@
 //! `1 − T(ν)`, `T(ν) = (sin πν / (M·sin(πν/M)))²` ([`residual_gain`]): 1 at whole ν, at
 //! least 0.95 from ν = 1 on.
 
-use crate::parallel::{fill_chunks, fill_each, workers};
+use crate::parallel::{fill_chunks, fill_each, map_indices, workers};
 use crate::path::{IndexedPoints, PathPoint, Spiral, WalkedRule};
 use std::borrow::Cow;
 use std::convert::Infallible;
 use std::f64::consts::TAU;
 use std::ops::Range;
 use thiserror::Error;
+
+/// Grid samples made at a time where a record of the grid is made a block at a time
+/// ([`UniformSignal::narrow_residual`], [`UniformSignal::symmetric_part_at_points`]): 2 MiB.
+pub const BLOCK_SAMPLES: usize = 1 << 18;
 
 /// The smallest number of grid samples per revolution.
 pub const MIN_SAMPLES_PER_REV: usize = 8;
@@ -902,6 +906,53 @@ impl UniformSignal {
         }
     }
 
+    /// [`Self::symmetric_part`] of the heights of `signal` (the path this grid was made from)
+    /// interpolated at its points ([`Self::interpolate`]), to the bit, without a record of the
+    /// grid: the heights are made `block` at a time ([`PathSignal::values_at`]'s samples) and
+    /// the triangle means run over them twice, first for the means the ends are extrapolated
+    /// from, then handing the symmetric part over sample by sample, each point's value made
+    /// once both ends of its grid interval are known. The symmetric split's Z at the points.
+    pub(crate) fn symmetric_part_at_points(&self, signal: &PathSignal, block: usize) -> Vec<f64> {
+        let (n, m) = (self.samples, self.samples_per_rev);
+        if n < 2 * m - 1 || signal.len() < 2 {
+            let symmetric = self.symmetric_part(&self.heights(signal));
+            return map_indices(signal.len(), |i| {
+                self.interpolate(&symmetric, signal.angle(i))
+            });
+        }
+        let fill = |first: usize, out: &mut [f64]| {
+            signal.resample_with(|i| signal.z_mm[i], m, first, out, |slot, v| *slot = v);
+        };
+        let means = |each: &mut dyn FnMut(usize, f64)| {
+            let window = std::cell::RefCell::new(Window::new(n, m + 1, block.max(m), &fill));
+            triangle_means(n, m, |j| window.borrow_mut().value(j), each);
+        };
+        let mut ends = EndMeans::new(n, m);
+        means(&mut |c, mean| ends.offer(c, mean));
+        let at = ends.extrapolation();
+        let mut z = Vec::with_capacity(signal.len());
+        // The part at the sample before, and the next point's interval.
+        let mut before = 0.0;
+        let mut point = (0..signal.len())
+            .map(|i| self.interval(n, signal.angle(i)))
+            .peekable();
+        let mut hand = |j: usize, part: f64| {
+            while let Some(&(_, t)) = point.peek().filter(|&&(k, _)| k < j) {
+                z.push(before + t * (part - before));
+                point.next();
+            }
+            before = part;
+        };
+        for j in 0..m - 1 {
+            hand(j, at(j).unwrap_or(0.0));
+        }
+        means(&mut |c, mean| hand(c, mean));
+        for j in n - m + 1..n {
+            hand(j, at(j).unwrap_or(0.0));
+        }
+        z
+    }
+
     /// [`Self::subtract_symmetric_part`] of the `n` samples that `fill(first, block)` writes
     /// (the samples `first …` in `block`), each rounded to single precision: to the bit the
     /// double-precision residual rounded. The samples are made `block` at a time and held a
@@ -1016,13 +1067,14 @@ struct Window<F> {
 
 impl<F: Fn(usize, &mut [f64])> Window<F> {
     fn new(n: usize, back: usize, block: usize, fill: F) -> Self {
+        let block = block.clamp(1, n.max(1));
         Self {
             fill,
             n,
             back,
             block,
             lo: 0,
-            held: Vec::with_capacity(back + block),
+            held: Vec::with_capacity(back.saturating_add(block)),
         }
     }
 
@@ -1532,7 +1584,7 @@ pub(crate) mod tests {
             };
             let mut double: Vec<f64> = (0..n).map(value).collect();
             grid.subtract_symmetric_part(&mut double);
-            for block in [1, m / 2, m, 1000, n] {
+            for block in [1, m / 2, m, 1000, n, usize::MAX] {
                 let made = std::cell::Cell::new(0);
                 let fill = |first: usize, out: &mut [f64]| {
                     assert_eq!(first, made.get(), "blocks in order");
@@ -1546,6 +1598,27 @@ pub(crate) mod tests {
                 for (j, (a, b)) in narrow.iter().zip(&double).enumerate() {
                     let want = (*b as f32).to_bits();
                     assert_eq!(a.to_bits(), want, "n {n}, block {block}: sample {j}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_symmetric_part_at_the_points_is_the_records_interpolated_to_the_bit() {
+        // A constant-arc spiral (points between the samples, denser and sparser than the grid)
+        // of 300 turns and of one: made a block at a time, the symmetric part at every point
+        // is that of the whole record of heights interpolated there, ends included.
+        let z = |r: f64, t: f64| 0.3 * r * r + 1e-3 * (5.0 * t).sin() + 2e-4 * (29.0 * t).cos();
+        for revs in [300.0, 1.0] {
+            let s = arc_spiral(revs, 4.0, 0.004, 0.3, z);
+            let g = s.uniform().unwrap();
+            let symmetric = g.symmetric_part(&g.z_mm);
+            for block in [1, 500, usize::MAX] {
+                let at = g.symmetric_part_at_points(&s, block);
+                assert_eq!(at.len(), s.len(), "{revs} turns, block {block}");
+                for (i, v) in at.iter().enumerate() {
+                    let want = g.interpolate(&symmetric, s.angle(i)).to_bits();
+                    assert_eq!(v.to_bits(), want, "{revs} turns, block {block}: point {i}");
                 }
             }
         }

@@ -80,7 +80,9 @@
 //! that close to the threshold, and its residual is taken in double precision before it is
 //! rounded, so the sag's millimetres do not swamp the micrometres analysed.
 
-use crate::dynamics::path_signal::{PathSignal, Stretch, UniformSignal, hz, residual_gain};
+use crate::dynamics::path_signal::{
+    BLOCK_SAMPLES, PathSignal, Stretch, UniformSignal, hz, residual_gain,
+};
 use crate::dynamics::real_transform::{self, RealForward, RealInverse, in_place, real_values_of};
 use crate::parallel::{both, fill_chunks, fill_each};
 use rustfft::num_complex::Complex;
@@ -483,7 +485,7 @@ fn highest_significant_of(a: &[f64], samples_per_rev: usize, len: usize) -> f64 
 /// [`highest_significant_cycles_per_rev`] of `value(i)` at the points of `signal` resampled on
 /// its `grid` ([`PathSignal::values_at`]'s samples): a channel's bandwidth figure. A grid whose
 /// transform runs in place ([`in_place`]) is held in single precision, 4 bytes a sample: its
-/// residual made a block at a time ([`UniformSignal::narrow_residual`], [`NARROW_BLOCK`]) and
+/// residual made a block at a time ([`UniformSignal::narrow_residual`], [`BLOCK_SAMPLES`]) and
 /// transformed in its memory ([`real_transform::narrow_spectrum`]). Its amplitudes are those
 /// of double precision within a few millionths of the largest, so the figure is the same
 /// unless a bin's amplitude lies that close to [`SIGNIFICANT_FRACTION`] of the largest
@@ -506,7 +508,7 @@ pub fn highest_significant_cycles_per_rev_at(
         });
     }
     let len = fast_length(n, true);
-    let mut residual = grid.narrow_residual(n, NARROW_BLOCK, fill);
+    let mut residual = grid.narrow_residual(n, BLOCK_SAMPLES, fill);
     let Ok(()) = fill_chunks(&mut residual, |first, part| {
         for (j, v) in (first..).zip(part.iter_mut()) {
             *v = (f64::from(*v) * hann(j, n)) as f32;
@@ -527,10 +529,6 @@ pub fn highest_significant_cycles_per_rev_at(
         .find(|&j| squared(j) >= floor * floor)
         .map_or(0.0, |j| j as f64 * m as f64 / len as f64)
 }
-
-/// Grid samples made at a time for a single-precision figure
-/// ([`highest_significant_cycles_per_rev_at`]): 2 MiB in double precision.
-pub const NARROW_BLOCK: usize = 1 << 18;
 
 /// The smallest length `2^a·3^b ≥ n` (even when `even`): rustfft transforms such lengths by
 /// its radix-2/3 kernels; a length with a large prime factor (a path of 1 000 001 points has

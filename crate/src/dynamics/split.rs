@@ -61,8 +61,8 @@
 //! k*. No speed helps when the stroke fails.
 
 use crate::dynamics::path_signal::{
-    AngleExtremes, PathSignal, SignalError, UniformSignal, extremes, first_past, hz, merged, omega,
-    peak_to_valley, peak_to_valley_at, spread,
+    AngleExtremes, BLOCK_SAMPLES, PathSignal, SignalError, UniformSignal, extremes, first_past, hz,
+    merged, omega, peak_to_valley, peak_to_valley_at, spread,
 };
 use crate::dynamics::real_transform::RealInverse;
 use crate::dynamics::spectrum::{
@@ -667,11 +667,7 @@ pub fn split_on(
     };
     match spec {
         SplitSpec::Symmetric => {
-            let symmetric = grid.symmetric_part(&ctx.heights());
-            let z = map_indices(signal.len(), |i| {
-                grid.interpolate(&symmetric, signal.angle(i))
-            });
-            drop(symmetric);
+            let z = grid.symmetric_part_at_points(signal, BLOCK_SAMPLES);
             Ok(ctx.finish(z, None, limits, None))
         }
         SplitSpec::LowPass { cutoff_hz } => {

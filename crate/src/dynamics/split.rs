@@ -61,8 +61,8 @@
 //! k*. No speed helps when the stroke fails.
 
 use crate::dynamics::path_signal::{
-    AngleExtremes, BLOCK_SAMPLES, PathSignal, SignalError, UniformSignal, extremes, first_past, hz,
-    merged, omega, peak_to_valley, peak_to_valley_at, spread,
+    AngleExtremes, BLOCK_SAMPLES, PathSignal, SignalError, UniformSignal, extremes_at, first_past,
+    hz, merged, omega, peak_to_valley, peak_to_valley_at, spread,
 };
 use crate::dynamics::real_transform::RealInverse;
 use crate::dynamics::spectrum::{
@@ -70,7 +70,7 @@ use crate::dynamics::spectrum::{
 };
 use crate::field::{FieldError, positive};
 use crate::job::SplitSpec;
-use crate::parallel::{both, fill_chunks, fill_each, map_indices};
+use crate::parallel::{both, fill_chunks, map_indices};
 use rustfft::num_complex::Complex;
 use serde::{Deserialize, Serialize};
 use std::borrow::Cow;
@@ -327,24 +327,22 @@ impl LowPass {
     }
 
     /// The peak-to-valley of the servo's share `z − Z` at the points of `signal` (on `grid`)
-    /// with the slide's Z filtered at `k_c`: each segment's channel made on the next free core
-    /// and read at the points whose grid interval starts in its core.
+    /// with the slide's Z filtered at `k_c`: each segment's channel made in turn (its transform
+    /// on every core) and read at the points whose grid interval starts in its core (on every
+    /// core), so that one segment's channel is held beside the spectra.
     fn servo_peak_to_valley(&self, signal: &PathSignal, grid: &UniformSignal, k_c: f64) -> f64 {
         let n = self.samples;
         let interval = |i: usize| grid.interval(n, signal.angle(i));
-        let mut found = vec![(f64::INFINITY, f64::NEG_INFINITY); self.segments.len()];
-        let Ok(()) = fill_each(&mut found, |k| {
-            let segment = &self.segments[k];
+        let found = self.segments.iter().map(|segment| {
             let channel = segment.channel(self.samples_per_rev, k_c);
             let at = |j: usize| channel[(j as isize - segment.start) as usize];
             let starts_before = |j: usize| move |i: usize| interval(i).0 < j;
             let first = first_past(0, signal.len(), starts_before(segment.core.start));
             let last = first_past(first, signal.len(), starts_before(segment.core.end));
-            let servo = (first..last).map(|i| {
-                let (j, t) = interval(i);
-                signal.z_mm[i] - (at(j) + t * (at(j + 1) - at(j)))
-            });
-            Ok::<_, Infallible>(extremes(servo))
+            extremes_at(last - first, |k| {
+                let (j, t) = interval(first + k);
+                signal.z_mm[first + k] - (at(j) + t * (at(j + 1) - at(j)))
+            })
         });
         spread(merged(found))
     }

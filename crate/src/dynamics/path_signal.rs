@@ -912,7 +912,7 @@ impl UniformSignal {
     /// the triangle means run over them twice, first for the means the ends are extrapolated
     /// from, then handing the symmetric part over sample by sample, each point's value made
     /// once both ends of its grid interval are known. The symmetric split's Z at the points.
-    pub(crate) fn symmetric_part_at_points(&self, signal: &PathSignal, block: usize) -> Vec<f64> {
+    pub fn symmetric_part_at_points(&self, signal: &PathSignal, block: usize) -> Vec<f64> {
         let (n, m) = (self.samples, self.samples_per_rev);
         if n < 2 * m - 1 || signal.len() < 2 {
             let symmetric = self.symmetric_part(&self.heights(signal));
@@ -958,7 +958,7 @@ impl UniformSignal {
     /// double-precision residual rounded. The samples are made `block` at a time and held a
     /// block and a revolution at a time (the triangle means read a revolution back), so that
     /// only the single-precision record is held whole: for a bandwidth figure of a long grid.
-    pub(crate) fn narrow_residual(
+    pub fn narrow_residual(
         &self,
         n: usize,
         block: usize,

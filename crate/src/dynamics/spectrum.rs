@@ -484,9 +484,10 @@ fn highest_significant_of(a: &[f64], samples_per_rev: usize, len: usize) -> f64 
 
 /// [`highest_significant_cycles_per_rev`] of `value(i)` at the points of `signal` resampled on
 /// its `grid` ([`PathSignal::values_at`]'s samples): a channel's bandwidth figure. A grid whose
-/// transform runs in place ([`in_place`]) is held in single precision, 4 bytes a sample: its
-/// residual made a block at a time ([`UniformSignal::narrow_residual`], [`BLOCK_SAMPLES`]) and
-/// transformed in its memory ([`real_transform::narrow_spectrum`]). Its amplitudes are those
+/// transform runs in place (from [`real_transform::IN_PLACE_FROM`] samples) is held in single
+/// precision, 4 bytes a sample: its residual made a block at a time
+/// ([`UniformSignal::narrow_residual`], [`BLOCK_SAMPLES`]) and transformed in its memory by the
+/// transform of [`real_transform`] in f32. Its amplitudes are those
 /// of double precision within a few millionths of the largest, so the figure is the same
 /// unless a bin's amplitude lies that close to [`SIGNIFICANT_FRACTION`] of the largest
 /// (`a_long_grids_figure_in_single_precision_is_the_double_ones`). A shorter grid's figure is

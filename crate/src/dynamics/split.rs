@@ -36,7 +36,7 @@
 //! never made whole. At one cutoff (the low-pass split, and the automatic split's first trial
 //! at its lowest) each segment is made, filtered and read before the next is made: one
 //! segment's record is held beside the path. The automatic split's bisection holds the
-//! segments' spectra, about one record of the grid, and a segment's channel on each core.
+//! segments' spectra, about one record of the grid, and one segment's channel at a time.
 //!
 //! **Automatic** ([`SplitSpec::Auto`], needs [`SplitLimits`]): the slide alone (`Z = z`,
 //! `W = 0`) if z keeps within the slide's velocity, acceleration and bandwidth; otherwise the
@@ -246,7 +246,7 @@ pub fn response(k: f64, k_c: f64) -> f64 {
 /// Grid samples a segment of the low-pass gives at most (module docs; records of about
 /// 32 MiB): a longer grid is filtered segment by segment, so that a filter at one cutoff holds
 /// one segment at a time and the automatic split's bisection the segments' spectra (about one
-/// record of the grid in all) and a segment's channel a core, never a channel of the whole
+/// record of the grid in all) and one segment's channel at a time, never a channel of the whole
 /// grid.
 pub const SEGMENT_SAMPLES: usize = 1 << 22;
 
@@ -800,8 +800,8 @@ impl Context<'_> {
     /// share at the points at that cutoff. The lowest is tried first, a segment at a time
     /// ([`LowPass::points`]): it is the answer where the path's non-symmetric part fits the
     /// stroke. Otherwise the filter is made for the bisection, whose trials hold its spectra
-    /// and a segment's channel a core ([`LowPass::servo_peak_to_valley`], the same figure to
-    /// the bit); Z at the cutoff found is made from the spectra at the end
+    /// and one segment's channel at a time ([`LowPass::servo_peak_to_valley`], the same
+    /// figure to the bit); Z at the cutoff found is made from the spectra at the end
     /// ([`LowPass::into_points`]).
     fn lowest_cutoff(&self, stroke_mm: f64) -> (f64, Vec<f64>) {
         let (s, grid) = (self.signal, self.grid);
@@ -1117,8 +1117,9 @@ mod tests {
 
     #[test]
     fn z_at_the_points_is_the_whole_channel_read_there_to_the_bit() {
-        // A constant-arc spiral (points between grid samples) filtered whole and in segments: Z at the points is the whole filtered grid signal interpolated there, to
-        // the bit, points in a core's last interval included.
+        // A constant-arc spiral (points between grid samples) filtered whole and in segments,
+        // the spectra held or made one at a time: Z at the points is the whole filtered grid
+        // signal interpolated there, to the bit, points in a core's last interval included.
         let z = |r: f64, t: f64| 0.3 * r * r + 1e-3 * (5.0 * t).sin() + 2e-4 * (29.0 * t).cos();
         let s = arc_spiral(900.0, 4.0, 0.004, 0.5, z);
         let g = s.uniform().unwrap();

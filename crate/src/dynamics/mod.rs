@@ -561,9 +561,15 @@ impl Dynamics {
         // has let its record go: one transform of their length for both.
         let (spectrum, z_band_cpr, x_needed_hz) = match uniform.as_ref() {
             Ok(g) => {
-                let radii = || signal.radii_at(per_rev);
-                let (s, z_band, x_band) =
-                    amplitude_spectrum_and_bands_on(g, heights(), radii, rpm, SPECTRUM_BINS);
+                let radius = |i: usize| signal.rho(i);
+                let (s, z_band, x_band) = amplitude_spectrum_and_bands_on(
+                    signal,
+                    g,
+                    heights(),
+                    radius,
+                    rpm,
+                    SPECTRUM_BINS,
+                );
                 (s, z_band, Some(hz(x_band, rpm)))
             }
             Err(_) => (Spectrum::default(), None, None),

@@ -541,8 +541,9 @@ impl PathSignal {
         }
     }
 
-    /// [`Self::resample`] where it has the two points and the positive rate it needs.
-    fn values_at_by(
+    /// [`Self::resample`] where it has the two points and the positive rate it needs (else
+    /// empty).
+    pub(crate) fn values_at_by(
         &self,
         samples_per_rev: usize,
         value: impl Fn(usize) -> f64 + Sync,

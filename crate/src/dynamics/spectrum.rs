@@ -319,70 +319,55 @@ fn amplitude_spectrum_of(
 }
 
 /// [`amplitude_spectrum_and_band_on`] of the grid's heights `heights` (as `grid.z_mm`), and
-/// [`highest_significant_cycles_per_rev`] of the values `values` makes (one a grid sample),
-/// each to the bit, by one transform of their common length made on a second core while the
-/// heights' residual is taken. A long record (transformed in place,
+/// [`highest_significant_cycles_per_rev_at`] of `value(i)` at the points of `signal` (the path
+/// the grid was made from), each to the bit. Short records are made one after the other and
+/// transformed on two cores by one transform of their common length, made on a second core
+/// while the heights' residual is taken. A long record (transformed in place,
 /// [`crate::dynamics::real_transform::IN_PLACE_FROM`] samples or more) is taken one at a time:
-/// the heights' spectrum first, then the values are made in its memory's stead (the dynamics'
-/// peak holds one record of the grid, not two). Short records are prepared one after the other
-/// and transformed on two cores.
+/// the heights' spectrum first, then the values' figure in single precision once the heights'
+/// record is let go (the dynamics' peak holds one record of the grid, not two).
 pub fn amplitude_spectrum_and_bands_on(
+    signal: &PathSignal,
     grid: &UniformSignal,
     heights: Vec<f64>,
-    values: impl FnOnce() -> Vec<f64>,
+    value: impl Fn(usize) -> f64 + Sync,
     spindle_rpm: f64,
     max_bins: usize,
 ) -> (Spectrum, Option<f64>, f64) {
     let len = fast_length(grid.len(), false);
-    let per_rev = grid.samples_per_rev;
-    let spectrum_by = |forward: &RealForward, residual: Option<Vec<f64>>| match residual {
-        Some(r) => spectrum_of(
-            grid,
-            &hann_amplitudes_by(forward, r),
-            len,
-            spindle_rpm,
-            max_bins,
-        ),
-        None => (Spectrum::default(), None),
-    };
-    let band_by = |forward: &RealForward, residual: Vec<f64>| {
-        highest_significant_of(&hann_amplitudes_by(forward, residual), per_rev, len)
-    };
-    let heights_residual =
-        |heights| positive_speed(spindle_rpm).then(|| residual_of(grid, heights));
-    // Records of another length than the grid's: each figure alone.
-    let separately = |heights, values| {
+    if in_place(len) || heights.len() != grid.len() {
         let (spectrum, band) = amplitude_spectrum_of(grid, heights, spindle_rpm, max_bins);
-        (
+        let values_band = highest_significant_cycles_per_rev_at(signal, grid, value);
+        return (spectrum, band, values_band);
+    }
+    let per_rev = grid.samples_per_rev;
+    let values = signal.values_at_by(per_rev, value);
+    if values.len() != grid.len() {
+        let (spectrum, band) = amplitude_spectrum_of(grid, heights, spindle_rpm, max_bins);
+        return (
             spectrum,
             band,
             highest_significant_cycles_per_rev(grid, values),
-        )
-    };
-    if heights.len() != grid.len() {
-        return separately(heights, values());
+        );
     }
-    if in_place(len) {
-        let (heights, forward) = both(|| heights_residual(heights), || forward_plan(len));
-        let (spectrum, band) = spectrum_by(&forward, heights);
-        let values = values();
-        let values_band = match values.len() == grid.len() {
-            true => band_by(&forward, residual_of(grid, values)),
-            false => highest_significant_cycles_per_rev(grid, values),
-        };
-        return (spectrum, band, values_band);
-    }
-    let values = values();
-    if values.len() != grid.len() {
-        return separately(heights, values);
-    }
+    let heights_residual =
+        |heights| positive_speed(spindle_rpm).then(|| residual_of(grid, heights));
     let ((heights, values), forward) = both(
         || (heights_residual(heights), residual_of(grid, values)),
         || forward_plan(len),
     );
     let ((spectrum, band), values_band) = both(
-        || spectrum_by(&forward, heights),
-        || band_by(&forward, values),
+        || match heights {
+            Some(r) => spectrum_of(
+                grid,
+                &hann_amplitudes_by(&forward, r),
+                len,
+                spindle_rpm,
+                max_bins,
+            ),
+            None => (Spectrum::default(), None),
+        },
+        || highest_significant_of(&hann_amplitudes_by(&forward, values), per_rev, len),
     );
     (spectrum, band, values_band)
 }
@@ -503,9 +488,7 @@ pub fn highest_significant_cycles_per_rev_at(
     };
     if !in_place(fast_length(n, false)) || signal.len() < 2 {
         return highest_significant_cycles_per_rev_beside(grid, n, || {
-            let mut values = vec![0.0; n];
-            fill(0, &mut values);
-            values
+            signal.values_at_by(m, &value)
         });
     }
     let len = fast_length(n, true);
@@ -843,8 +826,8 @@ mod tests {
             // The same with the radii's figure beside it, by one shared transform on two
             // cores, and each figure with its transform made beside its record: to the bit.
             let radii = highest_significant_cycles_per_rev(&g, rho.clone());
-            let both =
-                amplitude_spectrum_and_bands_on(&g, g.z_mm.clone(), || rho.clone(), 600.0, 256);
+            let radius = |i: usize| s.rho(i);
+            let both = amplitude_spectrum_and_bands_on(&s, &g, g.z_mm.clone(), radius, 600.0, 256);
             assert_eq!(both.0, spectrum);
             assert_eq!(both.1.map(f64::to_bits), band.map(f64::to_bits));
             assert_eq!(both.2.to_bits(), radii.to_bits());
@@ -862,8 +845,9 @@ mod tests {
         assert!((k - 17.5).abs() < 0.3, "{k}");
         assert_eq!(amplitude_spectrum_and_band_on(&g, 0.0, 256).1, None);
         // Without a speed there is no spectrum, but the other figure still is.
+        let radius = |i: usize| s.rho(i);
         let (none, no_band, radii) =
-            amplitude_spectrum_and_bands_on(&g, g.z_mm.clone(), || rho.clone(), 0.0, 256);
+            amplitude_spectrum_and_bands_on(&s, &g, g.z_mm.clone(), radius, 0.0, 256);
         assert_eq!((none, no_band), (Spectrum::default(), None));
         let own = highest_significant_cycles_per_rev(&g, rho);
         assert_eq!(radii.to_bits(), own.to_bits());
@@ -872,19 +856,22 @@ mod tests {
     #[test]
     fn a_long_grids_spectrum_and_radii_figure_one_at_a_time_are_each_alone_to_the_bit() {
         // A grid of 2²⁰ + 1 samples (a transform in place): the spectrum, then the radii's
-        // record made in its stead, each the same as made alone.
+        // figure in single precision, each the same as made alone (and the radii's the double
+        // one's).
         let tones = |_: f64, t: f64| 1e-3 * (3.0 * t).sin() + 2e-5 * (17.5 * t).cos();
         let s = spiral(8.0, 1 << 17, 4.0, 0.01, tones);
         let g = s.uniform().unwrap();
         assert!(in_place(fast_length(g.len(), false)));
-        let rho = || s.radii_at(g.samples_per_rev);
+        let radius = |i: usize| s.rho(i);
         let (spectrum, band) = amplitude_spectrum_and_band_on(&g, 600.0, 256);
-        let radii = highest_significant_cycles_per_rev(&g, rho());
+        let radii = highest_significant_cycles_per_rev_at(&s, &g, radius);
         let (one, one_band, one_radii) =
-            amplitude_spectrum_and_bands_on(&g, g.z_mm.clone(), rho, 600.0, 256);
+            amplitude_spectrum_and_bands_on(&s, &g, g.z_mm.clone(), radius, 600.0, 256);
         assert_eq!(one, spectrum);
         assert_eq!(one_band.map(f64::to_bits), band.map(f64::to_bits));
         assert_eq!(one_radii.to_bits(), radii.to_bits());
+        let double = highest_significant_cycles_per_rev(&g, s.radii_at(g.samples_per_rev));
+        assert_eq!(one_radii, double);
         assert!((band.unwrap() - 17.5).abs() < 0.3, "{band:?}");
     }
 

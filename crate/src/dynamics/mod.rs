@@ -97,11 +97,11 @@ pub const MAX_POINTS: u64 = 30_000_000;
 /// and about one record in all for a bisection, and every other stage holds at most one
 /// record beside the path's columns: the instantaneous frequency comes first, stretch by
 /// stretch in records of a stretch's length ([`spectrum::instantaneous_frequency`]); the
-/// spectrum and X's figure take the grid's heights and then its radii, one after the other;
-/// the low-pass's segments give the slide's share at the points, the channel never made whole;
-/// the servo's and Z's bandwidth figures then take W and Z resampled in single precision, 4
-/// bytes a sample ([`spectrum::highest_significant_cycles_per_rev_at`]), beside the slide's
-/// share. Every transform runs in its record's memory, every residual and amplitude spectrum
+/// spectrum takes the grid's heights, and X's figure then the radii; the low-pass's segments
+/// give the slide's share at the points, the channel never made whole; the servo's and Z's
+/// bandwidth figures then take W and Z resampled beside the slide's share. Every bandwidth
+/// figure of a long grid is taken in single precision, 4 bytes a sample
+/// ([`spectrum::highest_significant_cycles_per_rev_at`]). Every transform runs in its record's memory, every residual and amplitude spectrum
 /// too. So the figure is room to spare for a long grid: 0.96–0.98 GB of peak resident set
 /// measured on the 28.4 M-point HCAA sine grid (51 M samples, 16 bytes a point) against 1.70 GB
 /// estimated; at the end the path, Z and W at the points alone take 0.91 GB of it.
@@ -557,8 +557,9 @@ impl Dynamics {
             first.unwrap_or_else(|| signal.values_at(per_rev, &signal.z_mm))
         };
         // The spectrum with Z's highest significant frequency read off it (cycles a
-        // revolution), and X's bandwidth figure of the grid's radii, made once the spectrum
-        // has let its record go: one transform of their length for both.
+        // revolution), and X's bandwidth figure of the radii resampled on the grid, made once
+        // the spectrum has let its record go (on a short grid, one transform of their length
+        // for both).
         let (spectrum, z_band_cpr, x_needed_hz) = match uniform.as_ref() {
             Ok(g) => {
                 let radius = |i: usize| signal.rho(i);

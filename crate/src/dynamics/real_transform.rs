@@ -83,15 +83,7 @@ impl RealForward {
                 debug_assert!(done.is_ok());
                 out
             }
-            Self::InPlace(p) => {
-                // Two samples more: the Nyquist bin.
-                x.truncate(len);
-                x.reserve_exact(len + 2 - x.len());
-                x.resize(len + 2, 0.0);
-                let mut bins = as_complex(x);
-                p.forward(&mut bins);
-                bins
-            }
+            Self::InPlace(p) => p.spectrum(x),
         }
     }
 }
@@ -140,14 +132,9 @@ impl RealInverse {
 /// (even) samples, in `x`'s memory, by the transform in place in single precision: for a
 /// bandwidth figure of a long record, which reads amplitudes against 1 % of the largest and
 /// so needs neither double precision nor twice the memory (module docs).
-pub(crate) fn narrow_spectrum(mut x: Vec<f32>, len: usize) -> Vec<Complex<f32>> {
+pub(crate) fn narrow_spectrum(x: Vec<f32>, len: usize) -> Vec<Complex<f32>> {
     let len = len.max(2).next_multiple_of(2);
-    x.truncate(len);
-    x.reserve_exact(len + 2 - x.len());
-    x.resize(len + 2, 0.0);
-    let mut bins = as_complex(x);
-    InPlace::<f32>::new(len, FftDirection::Forward).forward(&mut bins);
-    bins
+    InPlace::<f32>::new(len, FftDirection::Forward).spectrum(x)
 }
 
 /// Whether a record of `len` samples is transformed in place: from [`IN_PLACE_FROM`], even.
@@ -211,6 +198,21 @@ impl<T: FftNum> InPlace<T> {
 
     fn len(&self) -> usize {
         self.len
+    }
+
+    /// Bins 0 … N of `x` padded with zeros to the transform's length, in `x`'s memory.
+    fn spectrum(&self, mut x: Vec<T>) -> Vec<Complex<T>>
+    where
+        T: bytemuck::Pod,
+    {
+        // Two samples more: the Nyquist bin.
+        let len = self.len;
+        x.truncate(len);
+        x.reserve_exact(len + 2 - x.len());
+        x.resize(len + 2, T::zero());
+        let mut bins = as_complex(x);
+        self.forward(&mut bins);
+        bins
     }
 
     /// Bins 0 … N of the real record held in `z` (N + 1 complex numbers, the last one spare).

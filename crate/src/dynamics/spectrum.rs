@@ -213,7 +213,7 @@ fn residual_of(grid: &UniformSignal, mut values: Vec<f64>) -> Vec<f64> {
 /// [`SIGNIFICANT_FRACTION`] of the largest, refined between samples; (sample + δ, amplitude).
 fn peaks(a: &[f64], q: f64) -> Vec<(f64, f64)> {
     let top = a.iter().copied().fold(0.0, f64::max);
-    let floor = (SIGNIFICANT_FRACTION * top).max(NEGLIGIBLE_MM);
+    let floor = significant_floor(top);
     let mut found: Vec<(f64, f64)> = (1..a.len().saturating_sub(1))
         .filter(|&j| {
             a[j] >= floor
@@ -461,7 +461,7 @@ pub fn highest_significant_cycles_per_rev_beside(
 /// `samples_per_rev` padded to `len`.
 fn highest_significant_of(a: &[f64], samples_per_rev: usize, len: usize) -> f64 {
     let top = a.iter().copied().fold(0.0, f64::max);
-    let floor = (SIGNIFICANT_FRACTION * top).max(NEGLIGIBLE_MM);
+    let floor = significant_floor(top);
     a.iter()
         .rposition(|&v| v >= floor)
         .map_or(0.0, |j| j as f64 * samples_per_rev as f64 / len as f64)
@@ -507,11 +507,17 @@ pub fn highest_significant_cycles_per_rev_at(
     };
     let gain = n as f64 / 2.0;
     let top = (0..bins.len()).map(squared).fold(0.0, f64::max).sqrt() / gain;
-    let floor = (SIGNIFICANT_FRACTION * top).max(NEGLIGIBLE_MM) * gain;
+    let floor = significant_floor(top) * gain;
     (0..bins.len())
         .rev()
         .find(|&j| squared(j) >= floor * floor)
         .map_or(0.0, |j| j as f64 * m as f64 / len as f64)
+}
+
+/// The smallest amplitude that counts beside the largest, `top`: [`SIGNIFICANT_FRACTION`] of
+/// it, and 1 pm.
+fn significant_floor(top: f64) -> f64 {
+    (SIGNIFICANT_FRACTION * top).max(NEGLIGIBLE_MM)
 }
 
 /// The smallest length `2^a·3^b ≥ n` (even when `even`): rustfft transforms such lengths by

@@ -98,19 +98,49 @@ impl Placement {
     }
 }
 
+/// A GPU buffer destroyed when dropped. On the web, wgpu's handles give their GPU memory back
+/// only when the garbage collector collects them; a re-planned part gives it back at once.
+struct OwnedBuffer(wgpu::Buffer);
+
+impl OwnedBuffer {
+    /// A vertex or index buffer holding `contents`.
+    fn new(device: &wgpu::Device, label: &str, contents: &[u8], usage: wgpu::BufferUsages) -> Self {
+        OwnedBuffer(
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage,
+            }),
+        )
+    }
+}
+
+impl std::ops::Deref for OwnedBuffer {
+    type Target = wgpu::Buffer;
+    fn deref(&self) -> &wgpu::Buffer {
+        &self.0
+    }
+}
+
+impl Drop for OwnedBuffer {
+    fn drop(&mut self) {
+        self.0.destroy();
+    }
+}
+
 /// Vertex and index buffers of the surface mesh.
 struct Mesh {
-    positions: wgpu::Buffer,
-    normals: wgpu::Buffer,
-    indices: wgpu::Buffer,
+    positions: OwnedBuffer,
+    normals: OwnedBuffer,
+    indices: OwnedBuffer,
     index_count: u32,
 }
 
 /// A verified program's path: positions and each point's deviation, and the colour scale's
 /// range.
 struct DeviationPath {
-    positions: wgpu::Buffer,
-    deviations: wgpu::Buffer,
+    positions: OwnedBuffer,
+    deviations: OwnedBuffer,
     count: u32,
     lo_nm: f32,
     hi_nm: f32,
@@ -138,7 +168,7 @@ pub struct Viewer {
     uniforms: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     mesh: Option<Mesh>,
-    path: Option<(wgpu::Buffer, u32)>,
+    path: Option<(OwnedBuffer, u32)>,
     /// A verified program's path, drawn instead of `path` while present.
     deviation_path: Option<DeviationPath>,
     /// Placement from the surface, else from the path.
@@ -148,6 +178,18 @@ pub struct Viewer {
     css_height: f32,
     /// Whether the user moved the camera since the last reset (a resize then keeps the view).
     moved: bool,
+}
+
+/// A viewer freed (its element removed from the page) gives its WebGPU device back at once,
+/// with every buffer and texture on it, rather than when the garbage collector comes: a page
+/// that makes and removes viewers holds only the live ones' devices. On WebGL2 the page loses
+/// the canvas's context itself (`spiralcam-viewer.js`).
+impl Drop for Viewer {
+    fn drop(&mut self) {
+        if self.backend == "WebGPU" {
+            self.device.destroy();
+        }
+    }
 }
 
 #[wasm_bindgen]
@@ -343,12 +385,7 @@ impl Viewer {
             web_sys::console::error_1(&format!("spiralcam viewer: set_surface: {problem}").into());
         } else if !indices.is_empty() {
             let buffer = |label, contents: &[u8], usage| {
-                self.device
-                    .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some(label),
-                        contents,
-                        usage,
-                    })
+                OwnedBuffer::new(&self.device, label, contents, usage)
             };
             let index_bytes: Vec<u8> = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
             self.mesh = Some(Mesh {
@@ -378,13 +415,12 @@ impl Viewer {
     pub fn set_path(&mut self, xyz: &[f32]) {
         let count = xyz.len() / 6 * 2;
         self.path = (count >= 2).then(|| {
-            let buffer = self
-                .device
-                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("path"),
-                    contents: &f32_bytes(&xyz[..3 * count]),
-                    usage: wgpu::BufferUsages::VERTEX,
-                });
+            let buffer = OwnedBuffer::new(
+                &self.device,
+                "path",
+                &f32_bytes(&xyz[..3 * count]),
+                wgpu::BufferUsages::VERTEX,
+            );
             (buffer, count as u32)
         });
         // The path places the scene only while there is no surface.
@@ -425,12 +461,12 @@ impl Viewer {
             return;
         }
         let buffer = |label, values: &[f32]| {
-            self.device
-                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(label),
-                    contents: &f32_bytes(values),
-                    usage: wgpu::BufferUsages::VERTEX,
-                })
+            OwnedBuffer::new(
+                &self.device,
+                label,
+                &f32_bytes(values),
+                wgpu::BufferUsages::VERTEX,
+            )
         };
         self.deviation_path = Some(DeviationPath {
             positions: buffer("program path", xyz),

@@ -4,7 +4,7 @@
 //! one-spiral program ([`super::NcWriter`]), the programs with passes ([`super::program`]) and
 //! their child programs.
 
-use super::number::{Odometer, push_fixed, push_scaled, scaled};
+use super::number::{push_fixed, push_scaled, scaled};
 use super::{Axis, Conventions, NcError, Style, Words};
 use crate::job::{FeedMode, OutputSpec};
 use crate::path::PathPoint;
@@ -22,9 +22,6 @@ pub struct Blocks {
     rpm: f64,
     last_theta: Option<f64>,
     last_f: Option<i64>,
-    /// The last text of each word of the cutting blocks, C, X, Z, the servo's and F, rolled on
-    /// to the next value.
-    texts: [Odometer; 5],
     /// The line being formatted.
     pub line: Vec<u8>,
 }
@@ -41,7 +38,6 @@ impl Blocks {
             rpm,
             last_theta: None,
             last_f: None,
-            texts: Default::default(),
             line: Vec::with_capacity(128),
         }
     }
@@ -98,7 +94,7 @@ impl Blocks {
             })?;
             if self.style.feed_every_block || self.last_f != Some(units) {
                 self.line.extend_from_slice(b" F");
-                self.texts[4].push(&mut self.line, units, self.decimals_f);
+                push_scaled(&mut self.line, units, self.decimals_f);
                 self.last_f = Some(units);
             }
         }
@@ -151,18 +147,18 @@ impl Blocks {
         if let Some(units) = w.w {
             self.line.push(b' ');
             self.line.push(self.conv.fts_word);
-            self.texts[3].push(&mut self.line, units, self.conv.decimals_xz);
+            push_scaled(&mut self.line, units, self.conv.decimals_xz);
         }
     }
 
     fn push_word(&mut self, axis: Axis, w: Words) {
-        let (letter, units, d, text) = match axis {
-            Axis::C => (b'C', w.c, self.conv.decimals_c, 0),
-            Axis::X => (b'X', w.x, self.conv.decimals_xz, 1),
-            Axis::Z => (b'Z', w.z, self.conv.decimals_xz, 2),
+        let (letter, units, d) = match axis {
+            Axis::C => (b'C', w.c, self.conv.decimals_c),
+            Axis::X => (b'X', w.x, self.conv.decimals_xz),
+            Axis::Z => (b'Z', w.z, self.conv.decimals_xz),
         };
         self.line.push(letter);
-        self.texts[text].push(&mut self.line, units, d);
+        push_scaled(&mut self.line, units, d);
     }
 
     /// `Z` and the height `z` mm (signed by the conventions).

@@ -56,27 +56,18 @@ pub fn scaled(v: f64, decimals: u32) -> Option<i64> {
 /// with room.
 const MAX_SCALED_LEN: usize = 24;
 
-/// Appends `units · 10^−decimals` with exactly `decimals` digits after the point
-/// ([`write_scaled`]) through a window of fixed size appended to `buf` and cut to the text's
-/// length. A copy of a length known only at run time would be a library call for every word
-/// of a program.
+/// Appends `units · 10^−decimals` with exactly `decimals` digits after the point: its length
+/// is counted first, then the text is built right to left (the decimals, the point, the integer
+/// part, the sign) in a window of fixed size appended to `buf` and cut to that length. A copy
+/// of a length known only at run time would be a library call for every word of a program.
 pub fn push_scaled(buf: &mut Vec<u8>, units: i64, decimals: u32) {
-    let start = buf.len();
-    buf.extend_from_slice(&[0; MAX_SCALED_LEN]);
-    let window: &mut [u8; MAX_SCALED_LEN] = (&mut buf[start..]).try_into().expect("the window");
-    let len = write_scaled(window, units, decimals);
-    buf.truncate(start + len);
-}
-
-/// Writes `units · 10^−decimals` with exactly `decimals` digits after the point at the start of
-/// `text`; returns its length. The length is counted first, then the text is built right to
-/// left: the decimals, the point, the integer part, the sign.
-fn write_scaled(text: &mut [u8; MAX_SCALED_LEN], units: i64, decimals: u32) -> usize {
     let mut mag = units.unsigned_abs();
     let whole = mag / POW10[decimals as usize] as u64;
     let digits = whole.checked_ilog10().map_or(1, |l| l as usize + 1);
     let len = usize::from(units < 0) + digits + usize::from(decimals > 0) + decimals as usize;
-    let text = &mut text[..len];
+    let start = buf.len();
+    buf.extend_from_slice(&[0; MAX_SCALED_LEN]);
+    let text = &mut buf[start..start + len];
     let mut i = len;
     let mut fraction = decimals as usize;
     while fraction >= 2 {
@@ -100,121 +91,7 @@ fn write_scaled(text: &mut [u8; MAX_SCALED_LEN], units: i64, decimals: u32) -> u
         text[i] = b'-';
     }
     debug_assert_eq!(i, 0, "the length counted is the text's");
-    len
-}
-
-/// The largest change of a word's units an [`Odometer`] rolls on; beyond it the text is made
-/// afresh, which is then as quick.
-const MAX_ROLL: u64 = 10_000;
-
-/// The text of a word's last value, rolled on like an odometer to the next. Consecutive points
-/// of a path differ in the last digits of each word, so the next text is the last with the
-/// difference added (or taken) digit by digit from the right: one or two characters touched,
-/// where [`write_scaled`] divides out every digit. Where the sign, the number of digits or the
-/// decimals change, or the values are far apart, the text is made afresh. Either way it is
-/// exactly [`push_scaled`]'s.
-#[derive(Debug, Clone)]
-pub struct Odometer {
-    units: i64,
-    decimals: u32,
-    text: [u8; MAX_SCALED_LEN],
-    /// The text's length; 0 before the first value.
-    len: usize,
-}
-
-impl Default for Odometer {
-    fn default() -> Self {
-        Self {
-            units: 0,
-            decimals: 0,
-            text: [0; MAX_SCALED_LEN],
-            len: 0,
-        }
-    }
-}
-
-impl Odometer {
-    /// Appends `units · 10^−decimals` as [`push_scaled`] does. The last text is appended whole
-    /// and the digits that change are written in both copies: reading the text back whole just
-    /// after single digits were written into it would wait on those stores.
-    pub fn push(&mut self, buf: &mut Vec<u8>, units: i64, decimals: u32) {
-        let start = buf.len();
-        buf.extend_from_slice(&self.text);
-        let shown: &mut [u8; MAX_SCALED_LEN] = (&mut buf[start..]).try_into().expect("the window");
-        if self.len == 0 || decimals != self.decimals || !self.roll_to(units, shown) {
-            self.len = write_scaled(shown, units, decimals);
-            self.text = *shown;
-            self.units = units;
-            self.decimals = decimals;
-        }
-        buf.truncate(start + self.len);
-    }
-
-    /// Rolls the text, and its copy `shown`, on to `units`; `false` where that would change the
-    /// sign or the number of digits, or the step is beyond [`MAX_ROLL`] (the text is then to
-    /// be written afresh).
-    fn roll_to(&mut self, units: i64, shown: &mut [u8; MAX_SCALED_LEN]) -> bool {
-        if units == self.units {
-            return true;
-        }
-        if (units < 0) != (self.units < 0) {
-            return false;
-        }
-        let (new, old) = (units.unsigned_abs(), self.units.unsigned_abs());
-        let digits = usize::from(units < 0)..self.len;
-        let (text, shown) = (&mut self.text[digits.clone()], &mut shown[digits]);
-        let rolled = if new > old {
-            new - old <= MAX_ROLL && add_digits(text, shown, new - old)
-        } else {
-            old - new <= MAX_ROLL && subtract_digits(text, shown, old - new)
-        };
-        if rolled {
-            self.units = units;
-        }
-        rolled
-    }
-}
-
-/// Adds `d` to the decimal number `digits` (a point skipped), each digit written also in
-/// `copy`; `false` if the sum needs one more digit.
-fn add_digits(digits: &mut [u8], copy: &mut [u8], mut d: u64) -> bool {
-    for i in (0..digits.len()).rev() {
-        if d == 0 {
-            return true;
-        }
-        if digits[i] == b'.' {
-            continue;
-        }
-        let v = u64::from(digits[i] - b'0') + d;
-        digits[i] = b'0' + (v % 10) as u8;
-        copy[i] = digits[i];
-        d = v / 10;
-    }
-    d == 0
-}
-
-/// Takes `d` (at most the number) from the decimal number `digits` (a point skipped), each
-/// digit written also in `copy`; `false` if the difference has one digit fewer: a leading zero
-/// before another digit of the integer part.
-fn subtract_digits(digits: &mut [u8], copy: &mut [u8], mut d: u64) -> bool {
-    for i in (0..digits.len()).rev() {
-        if d == 0 {
-            break;
-        }
-        if digits[i] == b'.' {
-            continue;
-        }
-        let (digit, take) = (u64::from(digits[i] - b'0'), d % 10);
-        d /= 10;
-        digits[i] = if digit >= take {
-            b'0' + (digit - take) as u8
-        } else {
-            d += 1;
-            b'0' + (digit + 10 - take) as u8
-        };
-        copy[i] = digits[i];
-    }
-    !(digits.len() > 1 && digits[0] == b'0' && digits[1] != b'.')
+    buf.truncate(start + len);
 }
 
 /// Writes the two digits of `n` (< 100) at `tmp[i..i + 2]`.
@@ -352,67 +229,6 @@ mod tests {
             buf.truncate(4);
             push_scaled(&mut buf, units, 9);
             assert_eq!(String::from_utf8(buf[4..].to_vec()).unwrap(), text);
-        }
-    }
-
-    #[test]
-    fn an_odometers_text_is_push_scaleds_along_any_walk() {
-        // Walks of every step size about the roll's limit, through zero and both signs,
-        // across every change in the number of digits (9.999 → 10.000 and back), with the
-        // decimals changing now and then: each text against push_scaled's.
-        let mut odometer = Odometer::default();
-        let (mut rolled, mut fresh) = (Vec::new(), Vec::new());
-        let mut x = 0.271_828_f64;
-        let mut units: i64 = 999_990;
-        let mut decimals = 6;
-        for k in 0..400_000u64 {
-            x = (x * 7.3 + 0.37).fract();
-            let step = match k % 7 {
-                0 => 1,
-                1 => 9,
-                2 => 10,
-                3 => (x * 120.0) as i64,
-                4 => MAX_ROLL as i64 - 1 + (x * 3.0) as i64,
-                5 => (x * 1e7) as i64,
-                _ => 0,
-            };
-            let sign = if x < 0.55 { 1 } else { -1 };
-            units = units.saturating_add(sign * step);
-            if k % 50_000 == 0 {
-                units = -units;
-            }
-            if k % 90_001 == 0 {
-                decimals = (decimals + 4) % (MAX_DECIMALS + 1);
-            }
-            if k % 120_000 == 7 {
-                units = 5;
-            }
-            rolled.clear();
-            fresh.clear();
-            odometer.push(&mut rolled, units, decimals);
-            push_scaled(&mut fresh, units, decimals);
-            assert_eq!(rolled, fresh, "{units} with {decimals} decimals, step {k}");
-        }
-        for (from, to) in [
-            (999_999, 1_000_000),
-            (1_000_000, 999_999),
-            (-1, 0),
-            (0, -1),
-            (1, 0),
-            (-10, -9),
-            (i64::MAX - 3, i64::MAX),
-            (i64::MIN + 2, i64::MIN),
-        ] {
-            for d in [0, 1, 6] {
-                let mut odometer = Odometer::default();
-                rolled.clear();
-                odometer.push(&mut rolled, from, d);
-                rolled.clear();
-                fresh.clear();
-                odometer.push(&mut rolled, to, d);
-                push_scaled(&mut fresh, to, d);
-                assert_eq!(rolled, fresh, "{from} → {to} with {d} decimals");
-            }
         }
     }
 

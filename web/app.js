@@ -834,23 +834,27 @@ async function main() {
       }
     });
   };
-  try {
-    viewer = await Viewer.create(canvas);
-    status.backend = viewer.backend();
-    $('backend').textContent = status.backend;
-    const resize = () => {
-      const r = canvas.getBoundingClientRect();
-      viewer.resize(r.width, r.height, window.devicePixelRatio || 1);
-      redraw();
-    };
-    new ResizeObserver(resize).observe(canvas);
-    resize();
-    bindGestures(canvas, viewer, redraw);
-  } catch (e) {
-    status.backend = 'none';
-    $('backend').textContent = 'no 3-D view';
-    $('view-message').textContent = `The 3-D view is not available: ${e.message}. Planning and downloads still work.`;
-  }
+  // The view starts while the first job is planned (a plan waits for it before drawing): on a
+  // first visit its context and pipelines take about as long as the default job's plan.
+  const viewerReady = (async () => {
+    try {
+      viewer = await Viewer.create(canvas);
+      status.backend = viewer.backend();
+      $('backend').textContent = status.backend;
+      const resize = () => {
+        const r = canvas.getBoundingClientRect();
+        viewer.resize(r.width, r.height, window.devicePixelRatio || 1);
+        redraw();
+      };
+      new ResizeObserver(resize).observe(canvas);
+      resize();
+      bindGestures(canvas, viewer, redraw);
+    } catch (e) {
+      status.backend = 'none';
+      $('backend').textContent = 'no 3-D view';
+      $('view-message').textContent = `The 3-D view is not available: ${e.message}. Planning and downloads still work.`;
+    }
+  })();
 
   const progress = $('progress');
   const progressText = $('progress-text');
@@ -929,6 +933,8 @@ async function main() {
     try {
       const started = performance.now();
       const m = await worker.plan(job);
+      const seconds = (performance.now() - started) / 1000;
+      await viewerReady;
       planned = { job, names: m.names, at: new Date() };
       status.report = m.report;
       status.slices = m.slices ?? 0;
@@ -941,7 +947,7 @@ async function main() {
       showMaps(m.maps, stops);
       showAnalysis(null, stops);
       const on = status.slices ? ` in ${status.slices} slices on ${worker.size} workers` : '';
-      $('plan-time').textContent = `planned in ${fmt((performance.now() - started) / 1000, 2)} s${on}`;
+      $('plan-time').textContent = `planned in ${fmt(seconds, 2)} s${on}`;
       if (viewer) {
         viewer.set_surface(m.positions, m.normals, m.indices, m.zMin, m.zMax);
         const drawn = passPaths(m.path, m.report.program);

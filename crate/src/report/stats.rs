@@ -16,10 +16,10 @@ pub struct Stats {
     pub points: u64,
     pub(super) first_theta: f64,
     /// The first two points, for a join with the slice before.
-    first: Option<PathPoint>,
-    second: Option<PathPoint>,
-    last: Option<PathPoint>,
-    before_last: Option<PathPoint>,
+    first: Option<Seen>,
+    second: Option<Seen>,
+    last: Option<Seen>,
+    before_last: Option<Seen>,
     pub(super) z_min: f64,
     pub(super) z_max: f64,
     pub(super) sag_min: f64,
@@ -45,19 +45,34 @@ pub struct Stats {
     last_loop_index: Option<u64>,
 }
 
+/// What the figures of consecutive points need of a point: a third of its size, copied twice a
+/// point.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+struct Seen {
+    rho: f64,
+    theta: f64,
+    z: f64,
+}
+
 impl Stats {
     /// Adds one point.
-    pub fn add(&mut self, p: &PathPoint) {
+    pub fn add(&mut self, point: &PathPoint) {
+        let p = &Seen {
+            rho: point.rho,
+            theta: point.theta,
+            z: point.z,
+        };
         match self.last {
             None => {
                 self.first_theta = p.theta;
                 (self.z_min, self.z_max) = (p.z, p.z);
-                (self.sag_min, self.sag_max) = (p.contact[2], p.contact[2]);
+                (self.sag_min, self.sag_max) = (point.contact[2], point.contact[2]);
                 self.first = Some(*p);
             }
             Some(q) => {
                 self.second.get_or_insert(*p);
-                self.extremes(p.z, p.z, p.contact[2], p.contact[2]);
+                let sag = point.contact[2];
+                self.extremes(p.z, p.z, sag, sag);
                 self.step(&q, p);
                 if let Some(o) = self.before_last {
                     self.x_curvature(&o, &q, p);
@@ -65,7 +80,7 @@ impl Stats {
             }
         }
         self.before_last = self.last;
-        if p.at_arc_end {
+        if point.at_arc_end {
             self.arc_end += 1;
             self.first_arc_end.get_or_insert((p.rho, p.theta));
         }
@@ -143,7 +158,7 @@ impl Stats {
     }
 
     /// The step from `q` to `p`: its Z slope per degree of C and its X direction.
-    fn step(&mut self, q: &PathPoint, p: &PathPoint) {
+    fn step(&mut self, q: &Seen, p: &Seen) {
         let slope = ((p.z - q.z) / (p.theta - q.theta).to_degrees()).abs();
         if slope > self.max_slope {
             self.max_slope = slope;
@@ -171,7 +186,7 @@ impl Stats {
     }
 
     /// |d²X/dC²| at `q` from its neighbours `o` and `p`, on their (possibly unequal) C steps.
-    fn x_curvature(&mut self, o: &PathPoint, q: &PathPoint, p: &PathPoint) {
+    fn x_curvature(&mut self, o: &Seen, q: &Seen, p: &Seen) {
         let (h1, h2) = ((q.theta - o.theta).abs(), (p.theta - q.theta).abs());
         if h1 > 0.0 && h2 > 0.0 {
             let d2 = (2.0 * ((p.rho - q.rho) / h2 - (q.rho - o.rho) / h1) / (h1 + h2)).abs();

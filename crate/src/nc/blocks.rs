@@ -9,6 +9,9 @@ use super::{Axis, Conventions, NcError, Style, Words};
 use crate::job::{FeedMode, OutputSpec};
 use crate::path::PathPoint;
 
+/// Room for the text of an F word: ` F`, a sign, 19 digits, the point, with room.
+const F_TEXT: usize = 32;
+
 /// Formats blocks into a line buffer.
 #[derive(Debug, Clone)]
 pub struct Blocks {
@@ -22,6 +25,10 @@ pub struct Blocks {
     rpm: f64,
     last_theta: Option<f64>,
     last_f: Option<i64>,
+    /// The text of the F word `last_f` (` F…`, its first `f_len` bytes), copied while F
+    /// stays the same.
+    f_text: [u8; F_TEXT],
+    f_len: usize,
     /// The line being formatted.
     pub line: Vec<u8>,
 }
@@ -38,6 +45,8 @@ impl Blocks {
             rpm,
             last_theta: None,
             last_f: None,
+            f_text: [0; F_TEXT],
+            f_len: 0,
             line: Vec::with_capacity(128),
         }
     }
@@ -92,10 +101,18 @@ impl Blocks {
                 value: f,
                 at: Some((p.rho, p.theta)),
             })?;
-            if self.style.feed_every_block || self.last_f != Some(units) {
+            if self.last_f != Some(units) {
+                let start = self.line.len();
                 self.line.extend_from_slice(b" F");
                 push_scaled(&mut self.line, units, self.decimals_f);
+                self.f_len = self.line.len() - start;
+                self.f_text[..self.f_len].copy_from_slice(&self.line[start..]);
                 self.last_f = Some(units);
+            } else if self.style.feed_every_block {
+                // A copy of fixed size, cut to the text's: no library call a block.
+                let start = self.line.len();
+                self.line.extend_from_slice(&self.f_text);
+                self.line.truncate(start + self.f_len);
             }
         }
         self.line.push(b'\n');
@@ -233,6 +250,58 @@ pub fn comment_lines(text: &str, max: usize) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::job::Dialect;
+
+    /// The blocks of points at cumulative C steps `steps_deg`, as `dialect` writes them.
+    fn blocks_at(dialect: Dialect, steps_deg: &[f64]) -> (Blocks, Vec<(f64, String)>) {
+        let spec = OutputSpec {
+            dialect,
+            ..OutputSpec::default()
+        };
+        let mut b = Blocks::new(&spec, 1000.0);
+        b.start(0.0);
+        let mut theta = 0.0;
+        let mut lines = Vec::new();
+        for (i, step) in steps_deg.iter().enumerate() {
+            let p = PathPoint {
+                index: i as u64 + 1,
+                rho: 1.0,
+                theta: theta + step.to_radians(),
+                z: 0.1,
+                ..PathPoint::default()
+            };
+            let dc = (p.theta - theta).abs().to_degrees();
+            theta = p.theta;
+            let w = b.words(&p, None, 0.0).unwrap();
+            b.block(&p, w).unwrap();
+            lines.push((dc, String::from_utf8(b.line.clone()).unwrap()));
+        }
+        (b, lines)
+    }
+
+    #[test]
+    fn every_block_carries_the_f_of_its_own_step() {
+        // Equal steps (the kept text copied), then changes back and forth.
+        let steps = [0.09, 0.09, 0.18, 0.09, 0.045, 0.045, 0.07, 0.09, 0.09];
+        let (b, lines) = blocks_at(Dialect::Iso, &steps);
+        for (dc, line) in &lines {
+            let mut f = b" F".to_vec();
+            assert!(push_fixed(&mut f, 1000.0 * 360.0 / dc, b.decimals_f));
+            let f = String::from_utf8(f).unwrap();
+            assert!(
+                line.ends_with(&format!("{f}\n")),
+                "{line:?} for a step of {dc}°"
+            );
+            assert_eq!(line.matches(" F").count(), 1, "{line:?}");
+        }
+        // A dialect that writes F only when it changes writes it at the changes alone.
+        let (_, lines) = blocks_at(Dialect::Moore, &steps);
+        let with_f: Vec<bool> = lines.iter().map(|(_, l)| l.contains(" F")).collect();
+        let changed: Vec<bool> = (0..steps.len())
+            .map(|i| i == 0 || steps[i] != steps[i - 1])
+            .collect();
+        assert_eq!(with_f, changed, "{lines:?}");
+    }
 
     #[test]
     fn long_comments_wrap_between_words() {

@@ -61,6 +61,19 @@ const MAX_SCALED_LEN: usize = 24;
 /// part, the sign) in a window of fixed size appended to `buf` and cut to that length. A copy
 /// of a length known only at run time would be a library call for every word of a program.
 pub fn push_scaled(buf: &mut Vec<u8>, units: i64, decimals: u32) {
+    // The programs' usual decimals as constants: their divisions become multiplications and
+    // the loop over the decimals unrolls.
+    match decimals {
+        3 => push_decimals(buf, units, 3),
+        5 => push_decimals(buf, units, 5),
+        6 => push_decimals(buf, units, 6),
+        d => push_decimals(buf, units, d),
+    }
+}
+
+/// [`push_scaled`]'s body, inlined into each of its cases.
+#[inline(always)]
+fn push_decimals(buf: &mut Vec<u8>, units: i64, decimals: u32) {
     let mut mag = units.unsigned_abs();
     let whole = mag / POW10[decimals as usize] as u64;
     let digits = whole.checked_ilog10().map_or(1, |l| l as usize + 1);

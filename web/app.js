@@ -935,6 +935,8 @@ async function main() {
       const m = await worker.plan(job);
       const seconds = (performance.now() - started) / 1000;
       await viewerReady;
+      // A newer plan started while the view was being made: this one is stale.
+      if (mine !== generation) return;
       planned = { job, names: m.names, at: new Date() };
       status.report = m.report;
       status.slices = m.slices ?? 0;

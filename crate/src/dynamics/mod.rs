@@ -102,9 +102,10 @@ pub const MAX_POINTS: u64 = 30_000_000;
 /// bandwidth figures then take W and Z resampled beside the slide's share. Every bandwidth
 /// figure of a long grid is taken in single precision, 4 bytes a sample
 /// ([`spectrum::highest_significant_cycles_per_rev_at`]). Every transform runs in its record's
-/// memory, every residual and amplitude spectrum too. So the figure is room to spare for a long grid: 0.96–0.98 GB of peak resident set
-/// measured on the 28.4 M-point HCAA sine grid (51 M samples, 16 bytes a point) against 1.70 GB
-/// estimated; at the end the path, Z and W at the points alone take 0.91 GB of it.
+/// memory, every residual and amplitude spectrum too. So the figure is room to spare for a long
+/// grid: 0.96–0.98 GB of peak resident set measured on the 28.4 M-point HCAA sine grid (51 M
+/// samples, 16 bytes a point) against 1.70 GB estimated; at the end the path, Z and W at the
+/// points alone take 0.91 GB of it.
 pub const BYTES_PER_SAMPLE: u64 = 24;
 
 /// [`BYTES_PER_SAMPLE`] for a grid of at most [`MID_GRID_SAMPLES`] samples, whose records (at

@@ -100,6 +100,9 @@ pub struct SampleAt {
 }
 
 impl SampleAt {
+    // Not inlined: inlined, its remainder of the angle in degrees (a library call) was
+    // computed for every sample of the axis checks, ahead of the rare branches that use it.
+    #[inline(never)]
     fn new(index: usize, s: &AxisSample) -> Self {
         let at = Location::new(s.rho_mm, s.theta);
         Self {

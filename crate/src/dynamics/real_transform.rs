@@ -252,14 +252,15 @@ impl<T: FftNum> InPlace<T> {
 
 /// `e^{∓2πi·m/n}` for `m < count` from two tables of about √count entries: `m = q·t + s`,
 /// `w^m = coarse[q]·fine[s]`.
-struct Twiddles<T> {
+pub(crate) struct Twiddles<T> {
     step: usize,
     fine: Vec<Complex<T>>,
     coarse: Vec<Complex<T>>,
 }
 
 impl<T: FftNum> Twiddles<T> {
-    fn new(n: usize, count: usize, direction: FftDirection) -> Self {
+    /// The powers `w^m`, `m < count`, of `w = e^{∓2πi/n}` (− forward).
+    pub(crate) fn new(n: usize, count: usize, direction: FftDirection) -> Self {
         let step = (count as f64).sqrt().ceil().max(1.0) as usize;
         let sign = match direction {
             FftDirection::Forward => -1.0,
@@ -278,7 +279,7 @@ impl<T: FftNum> Twiddles<T> {
 
     /// `w^m` for m = `first`, `first` + 1, …, each `coarse[q]·fine[s]` with `m = q·t + s`
     /// stepped (no division after the first).
-    fn from(&self, first: usize) -> impl Iterator<Item = Complex<T>> + '_ {
+    pub(crate) fn from(&self, first: usize) -> impl Iterator<Item = Complex<T>> + '_ {
         let (mut q, mut s) = (first / self.step, first % self.step);
         std::iter::from_fn(move || {
             let w = self.coarse[q] * self.fine[s];

@@ -83,8 +83,11 @@
 use crate::dynamics::path_signal::{
     BLOCK_SAMPLES, PathSignal, Stretch, UniformSignal, hz, residual_gain,
 };
-use crate::dynamics::real_transform::{self, RealForward, RealInverse, in_place, real_values_of};
+use crate::dynamics::real_transform::{
+    self, RealForward, RealInverse, Twiddles, in_place, real_values_of,
+};
 use crate::parallel::{both, fill_chunks, fill_each};
+use rustfft::FftDirection;
 use rustfft::num_complex::Complex;
 use serde::Serialize;
 use std::convert::Infallible;
@@ -170,22 +173,32 @@ fn hann_amplitudes_by(forward: &RealForward, mut x: Vec<f64>) -> Vec<f64> {
     })
 }
 
-/// The Hann window applied to `x` in place, and its sum (its gain), added up as it is applied:
-/// one cosine a sample.
+/// The Hann window applied to `x` in place, and its sum (its gain), added up as it is applied.
 fn apply_hann(x: &mut [f64]) -> f64 {
-    let n = x.len();
-    let mut gain = 0.0;
-    for (j, v) in x.iter_mut().enumerate() {
-        let w = hann(j, n);
+    let (mut gain, window) = (0.0, Hann::new(x.len()));
+    for (v, w) in x.iter_mut().zip(window.from(0)) {
         gain += w;
         *v *= w;
     }
     gain
 }
 
-/// The Hann window of `n` samples at sample `j`.
-fn hann(j: usize, n: usize) -> f64 {
-    0.5 - 0.5 * (TAU * j as f64 / n as f64).cos()
+/// The Hann window of `n` samples, `0.5 − 0.5·cos(2πj/n)`, a sample after another: its cosines
+/// are the real parts of the powers of `e^{2πi/n}` from two tables of about √n entries
+/// ([`Twiddles`]), a complex product a sample instead of a cosine: within 10⁻¹⁵ of libm's
+/// `0.5 − 0.5·cos(2πj/n)` (`the_hann_window_is_its_cosines`; the rounding of that cosine's own
+/// argument is as large).
+struct Hann(Twiddles<f64>);
+
+impl Hann {
+    fn new(n: usize) -> Self {
+        Self(Twiddles::new(n, n, FftDirection::Forward))
+    }
+
+    /// The window at samples `first`, `first + 1`, … (below n).
+    fn from(&self, first: usize) -> impl Iterator<Item = f64> + '_ {
+        self.0.from(first).map(|w| 0.5 - 0.5 * w.re)
+    }
 }
 
 /// The forward real-input transform of `len` samples ([`RealForward`]: in place for long
@@ -493,9 +506,10 @@ pub fn highest_significant_cycles_per_rev_at(
     }
     let len = fast_length(n, true);
     let mut residual = grid.narrow_residual(n, BLOCK_SAMPLES, fill);
+    let window = Hann::new(n);
     let Ok(()) = fill_chunks(&mut residual, |first, part| {
-        for (j, v) in (first..).zip(part.iter_mut()) {
-            *v = (f64::from(*v) * hann(j, n)) as f32;
+        for (v, w) in part.iter_mut().zip(window.from(first)) {
+            *v = (f64::from(*v) * w) as f32;
         }
         Ok::<(), Infallible>(())
     });
@@ -813,6 +827,26 @@ fn positive_speed(spindle_rpm: f64) -> bool {
 mod tests {
     use super::*;
     use crate::dynamics::path_signal::tests::{arc_spiral, spiral};
+
+    #[test]
+    fn the_hann_window_is_its_cosines() {
+        // Lengths with a square table (10⁶), without (odd, prime), short ones, from the start
+        // and from an offset into the coarse table (as the chunks of a long record start); the
+        // largest difference found is 8.9e-16.
+        for n in [2usize, 3, 7, 1000, 65_537, 1_000_000, 1_048_583] {
+            let window = Hann::new(n);
+            for first in [0, n / 3, n - 1] {
+                let (mut count, mut worst) = (0, 0.0f64);
+                for (j, w) in (first..n).zip(window.from(first)) {
+                    let libm = 0.5 - 0.5 * (TAU * j as f64 / n as f64).cos();
+                    worst = worst.max((w - libm).abs());
+                    count += 1;
+                }
+                assert_eq!(count, n - first);
+                assert!(worst <= 1e-15, "n {n} from {first}: {worst:e}");
+            }
+        }
+    }
 
     #[test]
     fn the_spectrum_gives_the_heights_band_figure_to_the_bit() {

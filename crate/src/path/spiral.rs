@@ -778,10 +778,11 @@ fn arc_between(b: f64, phi: f64, d: f64) -> f64 {
 ///
 /// With `g(t) = √(1+t²)`, `G = g(φ)`, `c = φ/G`, `t = ds/(bG)` and `w = t/G` (about d/φ), the
 /// reversion of `ds/b = ∫ g` over the last d of φ (`Gd − (φ/G)d²/2 + d³/6G³ − …`) gives
-/// `d = t·(1 + (c/2)w + ((4c² − 1)/6)w² + (c(28c² − 13)/24)w³ + ((280c⁴ − 188c² + 13)/120)w⁴
-/// + …)`, the next coefficient at most 1.32 (`the_arc_step_series_is_newtons_root`): where w is
-/// below 2·10⁻⁴ (all of a path but its last turns) the terms left out are below 10⁻¹⁸ of d, and
-/// the step costs a square root and a division. Elsewhere, Newton's method on `arc_between`
+/// `d = t·(1 + (c/2)w + ((4c² − 1)/6)w² + (c(28c² − 13)/24)w³ + ((280c⁴ − 188c² + 13)/120)w⁴ +
+/// …)`, the next coefficient at most 1.32 (derived with sympy; checked against Newton's root by
+/// `the_arc_step_series_is_newtons_root`): where w is below 2·10⁻⁴ (all of a path but its last
+/// turns) the terms left out are below 10⁻¹⁸ of d, and the step costs a square root and a
+/// division. Elsewhere, Newton's method on `arc_between`
 /// from t, whose derivative in d is `b·g(φ − d)`: its error after a correction δ is at most
 /// `2δ²/g` (the second derivative is at most b, g is 1-Lipschitz and at least 1), and once that
 /// is below 10⁻¹⁷ of d the iteration stops without a further evaluation.

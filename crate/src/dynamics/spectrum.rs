@@ -795,93 +795,36 @@ fn stretch_frequencies(
         let mut env: Vec<f64> = v.iter().map(|e| e.1).collect();
         let middle = env.len() / 2;
         let (_, median_envelope, _) = env.select_nth_unstable_by(middle, f64::total_cmp);
-        let total: f64 = v.iter().map(|p| p.1).sum();
-        let median_hz = weighted_quantile(&mut v, total, 0.5);
-        let p95_hz = weighted_quantile(&mut v, total, 0.95);
+        // Equal frequencies are one value to the quantiles: their order does not matter.
+        v.sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
         Some(BandFrequency {
             rho_outer_mm: bands.rho_max - b as f64 * bands.width,
             rho_inner_mm: bands.rho_max - (b + 1) as f64 * bands.width,
-            median_hz,
-            p95_hz,
+            median_hz: weighted_quantile(&v, 0.5),
+            p95_hz: weighted_quantile(&v, 0.95),
             amplitude_um: *median_envelope * 1e3,
         })
     };
     members.iter().filter_map(|&b| figures(b)).collect()
 }
 
-/// The `q`-quantile of values with weights (`total` their sum): the least value at which the
-/// weight of the values up to it reaches q of the total (the plain quantile, by rank, when all
-/// weights are 0). By selection, not a sort (about 2 % of the HCAA dynamics job's CPU went to
-/// sorting every band's pairs): the slice is cut about a pivot (the median of three values) into
-/// the values below it, equal to it and above it, and the part that holds the quantile is cut
-/// again, down to 16 values, which are sorted; `v` is reordered. The same value as the running
-/// sum over the sorted values (`weighted_quantiles_are_those_of_the_sorted_values`), but where
-/// q of the total lies within the rounding of a partial sum, whose order differs.
-fn weighted_quantile(v: &mut [(f64, f64)], total: f64, q: f64) -> f64 {
-    let by_value = |p: &(f64, f64), r: &(f64, f64)| p.0.total_cmp(&r.0);
-    if v.is_empty() {
-        return 0.0;
-    }
+/// The `q`-quantile of values sorted ascending with weights: the first value where the
+/// cumulative weight reaches q of the total (the plain quantile when all weights are 0).
+fn weighted_quantile(sorted: &[(f64, f64)], q: f64) -> f64 {
+    let total: f64 = sorted.iter().map(|p| p.1).sum();
     if total <= 0.0 {
-        let rank = ((v.len() as f64 * q) as usize).min(v.len() - 1);
-        return v.select_nth_unstable_by(rank, by_value).1.0;
+        return sorted
+            .get(((sorted.len() as f64 * q) as usize).min(sorted.len().saturating_sub(1)))
+            .map_or(0.0, |p| p.0);
     }
-    let target = q * total;
-    let (mut part, mut below) = (v, 0.0);
-    while part.len() > 16 {
-        let pivot = median_of_three(part);
-        let (less, equal) = three_way(part, pivot);
-        let weight = |s: &[(f64, f64)]| s.iter().map(|p| p.1).sum::<f64>();
-        let w_less = weight(&part[..less]);
-        if less > 0 && below + w_less >= target {
-            part = &mut part[..less];
-            continue;
-        }
-        let w_equal = weight(&part[less..less + equal]);
-        if below + w_less + w_equal >= target || less + equal == part.len() {
-            return pivot;
-        }
-        below += w_less + w_equal;
-        part = &mut part[less + equal..];
-    }
-    part.sort_unstable_by(by_value);
-    for &(value, w) in part.iter() {
-        below += w;
-        if below >= target {
-            return value;
+    let mut acc = 0.0;
+    for &(v, w) in sorted {
+        acc += w;
+        if acc >= q * total {
+            return v;
         }
     }
-    part.last().map_or(0.0, |p| p.0)
-}
-
-/// The median of the first, middle and last values of `v` (at least one).
-fn median_of_three(v: &[(f64, f64)]) -> f64 {
-    let mut three = [v[0].0, v[v.len() / 2].0, v[v.len() - 1].0];
-    three.sort_unstable_by(f64::total_cmp);
-    three[1]
-}
-
-/// `v` reordered as its values below `pivot`, equal to it and above it (by `total_cmp`): the
-/// counts of the first two.
-fn three_way(v: &mut [(f64, f64)], pivot: f64) -> (usize, usize) {
-    use std::cmp::Ordering::{Equal, Greater, Less};
-    // Dutch national flag: [0, lt) below, [lt, i) equal, (gt, end] above.
-    let (mut lt, mut i, mut gt) = (0, 0, v.len());
-    while i < gt {
-        match v[i].0.total_cmp(&pivot) {
-            Less => {
-                v.swap(lt, i);
-                lt += 1;
-                i += 1;
-            }
-            Equal => i += 1,
-            Greater => {
-                gt -= 1;
-                v.swap(i, gt);
-            }
-        }
-    }
-    (lt, gt - lt)
+    sorted.last().map_or(0.0, |p| p.0)
 }
 
 /// Whether the signal can be analysed at `spindle_rpm`: a positive finite speed.
@@ -893,59 +836,6 @@ fn positive_speed(spindle_rpm: f64) -> bool {
 mod tests {
     use super::*;
     use crate::dynamics::path_signal::tests::{arc_spiral, spiral};
-
-    /// The quantile as it was taken: the running sum over the values sorted ascending.
-    fn sorted_quantile(v: &[(f64, f64)], q: f64) -> f64 {
-        let mut sorted = v.to_vec();
-        sorted.sort_unstable_by(|p, r| p.0.total_cmp(&r.0));
-        let total: f64 = sorted.iter().map(|p| p.1).sum();
-        if total <= 0.0 {
-            let rank = ((sorted.len() as f64 * q) as usize).min(sorted.len() - 1);
-            return sorted[rank].0;
-        }
-        let mut acc = 0.0;
-        for &(value, w) in &sorted {
-            acc += w;
-            if acc >= q * total {
-                return value;
-            }
-        }
-        sorted[sorted.len() - 1].0
-    }
-
-    #[test]
-    fn weighted_quantiles_are_those_of_the_sorted_values() {
-        // Whole-number weights (sums exact in any order, so that q of the total often falls
-        // on a partial sum exactly) and values with many ties, zero weights among them, from
-        // 1 to 5 000 pairs, 20 draws each; all weights 0 (quantiles by rank).
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = |m: u64| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state % m
-        };
-        for (len, _) in [1usize, 2, 3, 16, 17, 40, 333, 5000]
-            .into_iter()
-            .flat_map(|len| (0..20).map(move |draw| (len, draw)))
-        {
-            for (spread, weights) in [(7, 4), (1000, 3), (1 << 40, 100), (50, 1), (30, 2)] {
-                let v: Vec<(f64, f64)> = (0..len)
-                    .map(|_| (next(spread) as f64 * 0.25 - 3.0, next(weights) as f64))
-                    .collect();
-                for q in [0.0, 0.05, 0.5, 0.95, 1.0] {
-                    let total: f64 = v.iter().map(|p| p.1).sum();
-                    let got = weighted_quantile(&mut v.clone(), total, q);
-                    assert_eq!(
-                        got,
-                        sorted_quantile(&v, q),
-                        "{len} pairs, spread {spread}, weights < {weights}, q {q}"
-                    );
-                }
-            }
-        }
-        assert_eq!(weighted_quantile(&mut [], 0.0, 0.5), 0.0);
-    }
 
     #[test]
     fn the_hann_window_is_its_cosines() {

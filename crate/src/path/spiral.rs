@@ -782,10 +782,7 @@ fn arc_between(b: f64, phi: f64, d: f64) -> f64 {
 /// …)`, the next coefficient at most 1.32 (derived with sympy; checked against Newton's root by
 /// `the_arc_step_series_is_newtons_root`): where w is below 2·10⁻⁴ (all of a path but its last
 /// turns) the terms left out are below 10⁻¹⁸ of d, and the step costs a square root and a
-/// division. Elsewhere, Newton's method on `arc_between`
-/// from t, whose derivative in d is `b·g(φ − d)`: its error after a correction δ is at most
-/// `2δ²/g` (the second derivative is at most b, g is 1-Lipschitz and at least 1), and once that
-/// is below 10⁻¹⁷ of d the iteration stops without a further evaluation.
+/// division. Elsewhere, [`arc_step_by_newton`] from t.
 fn arc_step(b: f64, phi: f64, ds: f64) -> f64 {
     if phi <= 0.0 || (0.5 * b * phi * phi <= ds && arc_length(b, phi) <= ds) {
         return phi.max(0.0);
@@ -807,7 +804,10 @@ fn arc_step(b: f64, phi: f64, ds: f64) -> f64 {
     arc_step_by_newton(b, phi, ds, t)
 }
 
-/// [`arc_step`] by Newton's method from `start`.
+/// [`arc_step`] by Newton's method on [`arc_between`] from `start`, whose derivative in d is
+/// `b·g(φ − d)`: its error after a correction δ is at most `2δ²/g` (the second derivative is at
+/// most b, g is 1-Lipschitz and at least 1), and once that is below 10⁻¹⁷ of d the iteration
+/// stops without a further evaluation.
 fn arc_step_by_newton(b: f64, phi: f64, ds: f64, start: f64) -> f64 {
     let mut d = start;
     for _ in 0..50 {

@@ -191,7 +191,9 @@ export class Verified {
 }
 
 /**
- * The 3-D view of a surface and its tool path on a canvas.
+ * The 3-D view of a surface and its tool path on a canvas. A viewer freed (its element
+ * removed from the page) gives its buffers and textures back at once, and with the last
+ * viewer the page's WebGPU device ([`gpu`]).
  */
 export class Viewer {
     private constructor();
@@ -202,10 +204,15 @@ export class Viewer {
      */
     backend(): string;
     /**
-     * Creates a viewer on the canvas: WebGPU if the browser offers an adapter, else WebGL2.
+     * Creates a viewer on the canvas: WebGPU if the browser offers an adapter, else WebGL2;
+     * on WebGPU with the page's device where another viewer holds one.
      * Errors (no backend at all) become a JS exception with a clear message.
      */
     static create(canvas: HTMLCanvasElement): Promise<Viewer>;
+    /**
+     * How many GPU devices the page's viewers have opened: on WebGPU one serves them all.
+     */
+    static devices_opened(): number;
     /**
      * Orbits about the part centre by a drag of `dx`, `dy` CSS pixels.
      */
@@ -473,6 +480,7 @@ export interface InitOutput {
     readonly version: () => [number, number];
     readonly viewer_backend: (a: number) => [number, number];
     readonly viewer_create: (a: any) => any;
+    readonly viewer_devices_opened: () => number;
     readonly viewer_orbit: (a: number, b: number, c: number) => void;
     readonly viewer_pan: (a: number, b: number, c: number) => void;
     readonly viewer_render: (a: number) => [number, number];
@@ -485,11 +493,12 @@ export interface InitOutput {
     readonly viewer_z_exaggeration: (a: number) => number;
     readonly viewer_zoom: (a: number, b: number) => void;
     readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_72: (a: number, b: number, c: any) => [number, number];
-    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_73: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_74: (a: number, b: number, c: any) => [number, number];
+    readonly wasm_bindgen__convert__closures_____invoke__h0c816e4ac06bbd87_75: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h6a9a4c771fb11aad: (a: number, b: number, c: any, d: any) => void;
     readonly wasm_bindgen__convert__closures_____invoke__he0d491e625fe5b2c: (a: number, b: number, c: any) => [number, number];
     readonly wasm_bindgen__convert__closures_____invoke__h9a591c57c7a39bce: (a: number, b: number, c: any) => void;
+    readonly wasm_bindgen__convert__closures_____invoke__h9a591c57c7a39bce_73: (a: number, b: number, c: any) => void;
     readonly __wbindgen_malloc: (a: number, b: number) => number;
     readonly __wbindgen_realloc: (a: number, b: number, c: number, d: number) => number;
     readonly __wbindgen_free: (a: number, b: number, c: number) => void;

@@ -9,10 +9,11 @@
 // (a link's fragment, `job=…` as "Copy link" makes it), `controls` (job fields, by their last
 // name or full path, each a slider and a field), `downloads="none"`, `max-points` (the most
 // points planned in the box, default MAX_POINTS), `app` (the page "Open in spiralcam" opens,
-// default the index.html beside web/). Every viewer of a page shares one wasm module and one
-// planning worker; a viewer creates its GPU context when it first comes into view, draws only
-// while visible (IntersectionObserver) and gives the context back when it leaves the document
-// (browsers keep about 16 live WebGL contexts a page). Every failure (a src that 404s or is not
+// default the index.html beside web/). Every viewer of a page shares one wasm module, one
+// planning worker and, on WebGPU, one GPU device with its pipelines; a viewer creates its GPU
+// context when it first comes into view, draws only while visible (IntersectionObserver) and
+// gives the context back when it leaves the document (browsers keep about 16 live WebGL
+// contexts a page). Every failure (a src that 404s or is not
 // JSON, a bad fragment, an invalid job, a job too large) is a message in the box, never a
 // blank box or an uncaught error. `spiralcam:planned` events carry each report.
 
@@ -370,8 +371,9 @@ export class SpiralcamViewer extends HTMLElement {
     });
   }
 
-  /** Gives the GPU context back: the viewer freed and, on WebGL2, its context lost now rather
-   * than when the canvas is collected. */
+  /** Gives the GPU context back: the viewer freed (its buffers, and with the page's last viewer
+   * the WebGPU device) and its canvas's context lost (WebGL2) or unconfigured (WebGPU) now
+   * rather than when the canvas is collected. */
   release() {
     if (this.frame) cancelAnimationFrame(this.frame);
     this.frame = 0;
@@ -379,8 +381,9 @@ export class SpiralcamViewer extends HTMLElement {
     this.viewer.free();
     this.viewer = null;
     shared.released += 1;
-    const gl = this.backend === 'WebGL2' ? this.canvas.getContext('webgl2') : null;
-    gl?.getExtension('WEBGL_lose_context')?.loseContext();
+    if (this.backend === 'WebGL2') this.canvas.getContext('webgl2')?.getExtension('WEBGL_lose_context')?.loseContext();
+    // The page's WebGPU device outlives this canvas: let go of the canvas's configuration.
+    else if (this.backend === 'WebGPU') this.canvas.getContext('webgpu')?.unconfigure();
     // A fresh canvas for the next time the element is connected: a lost context stays lost.
     const canvas = this.canvas.cloneNode();
     this.canvas.replaceWith(canvas);

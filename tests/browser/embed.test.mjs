@@ -2,10 +2,11 @@
 // vendor copies: two <spiralcam-viewer> elements and one iframe of index.html?embed all draw
 // (pixels read back) through WebGPU and WebGL2 with one wasm instantiation for the page's
 // viewers; a control re-plans; the viewer's NC is the command line's; 40 viewers made and
-// removed in a row lose no context; postMessage loads a job into the iframe and answers with the
-// report, and a message from a foreign origin is ignored; every bad input is a message in the
-// box. The time from connected to first frame is printed (test diagnostics) as a figure; with
-// SPIRALCAM_SCREENSHOT=1 the page's screenshot is written to web/examples/embed.png.
+// removed in a row lose no context (on WebGPU they open no device: the page's serves them);
+// postMessage loads a job into the iframe and answers with the report, and a message from a
+// foreign origin is ignored; every bad input is a message in the box. The time from connected
+// to first frame is printed (test diagnostics) as a figure; with SPIRALCAM_SCREENSHOT=1 the
+// page's screenshot is written to web/examples/embed.png.
 
 import { after, before, describe, test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -98,7 +99,9 @@ for (const backend of ['WebGPU', 'WebGL2']) {
     test('40 viewers made and removed in a row lose no context', { timeout: 180_000 }, async () => {
       const loop = page.evaluate(async () => {
         const { shared: s, SpiralcamViewer } = await import('/web/spiralcam-viewer.js');
+        const { Viewer } = await import('/pkg/spiralcam_web.js');
         const before = s.contexts;
+        const devicesBefore = Viewer.devices_opened();
         const job = await (await fetch('/crate/jobs/lens-array-paper004.json')).json();
         job.strategy.feed_mm_per_rev = 0.5;
         for (let i = 0; i < 40; i++) {
@@ -121,7 +124,7 @@ for (const backend of ['WebGPU', 'WebGL2']) {
           console.debug(`viewer ${i} had its context`);
           v.remove();
         }
-        return { made: s.contexts - before, released: s.released, viewer: SpiralcamViewer.name };
+        return { made: s.contexts - before, released: s.released, devices: Viewer.devices_opened() - devicesBefore, viewer: SpiralcamViewer.name };
       });
       let timer;
       const stalled = new Promise((_, reject) => {
@@ -133,6 +136,9 @@ for (const backend of ['WebGPU', 'WebGL2']) {
       const made = await Promise.race([loop, stalled]).finally(() => clearTimeout(timer));
       assert.equal(made.made, 40);
       assert.ok(made.released >= 40, JSON.stringify(made));
+      // WebGPU: the 40 draw with the page's device (the two viewers above hold it); WebGL2: a
+      // context, hence a device, each.
+      assert.equal(made.devices, backend === 'WebGPU' ? 0 : 40, JSON.stringify(made));
       // The two viewers of the page still draw: their contexts were never the oldest lost.
       for (const sel of ['#lens-array', '#sinusoid']) {
         await page.evaluate((s) => document.querySelector(s).redraw(), sel);

@@ -7,15 +7,19 @@
 //! part diameter. The skeleton follows wgpu's examples (`examples/features/src/framework.rs`):
 //! WebGPU when `navigator.gpu` yields an adapter, else WebGL2; the surface is created from the
 //! canvas before the adapter is requested; `downlevel_webgl2_defaults()` limits; drawing buffer
-//! = CSS size × devicePixelRatio, at least 1; reconfigure on Lost/Outdated.
+//! = CSS size × devicePixelRatio, at least 1; reconfigure on Lost/Outdated. The device and the
+//! pipelines are the page's, shared by its viewers on WebGPU ([`gpu`]).
 
-use std::sync::Arc;
+use std::rc::Rc;
 
 use glam::Vec3;
 use wasm_bindgen::prelude::*;
 use wgpu::util::DeviceExt;
 
 use crate::camera::OrbitCamera;
+
+mod gpu;
+use gpu::Gpu;
 
 /// Height range shown, as a fraction of the part diameter, once exaggerated.
 const HEIGHT_FRACTION: f32 = 0.15;
@@ -148,24 +152,32 @@ struct DeviationPath {
 
 /// The drawing-buffer-sized attachments: depth and, with MSAA, the multisampled colour.
 struct Targets {
-    depth: wgpu::TextureView,
-    msaa: Option<wgpu::TextureView>,
+    depth: OwnedTexture,
+    msaa: Option<OwnedTexture>,
 }
 
-/// The 3-D view of a surface and its tool path on a canvas.
+/// A texture and its view, the texture destroyed when dropped (see [`OwnedBuffer`]).
+struct OwnedTexture {
+    texture: wgpu::Texture,
+    view: wgpu::TextureView,
+}
+
+impl Drop for OwnedTexture {
+    fn drop(&mut self) {
+        self.texture.destroy();
+    }
+}
+
+/// The 3-D view of a surface and its tool path on a canvas. A viewer freed (its element
+/// removed from the page) gives its buffers and textures back at once, and with the last
+/// viewer the page's WebGPU device ([`gpu`]).
 #[wasm_bindgen]
 pub struct Viewer {
-    backend: &'static str,
+    gpu: Rc<Gpu>,
     surface: wgpu::Surface<'static>,
-    device: wgpu::Device,
-    queue: wgpu::Queue,
     config: wgpu::SurfaceConfiguration,
-    sample_count: u32,
     targets: Targets,
-    surface_pipeline: wgpu::RenderPipeline,
-    path_pipeline: wgpu::RenderPipeline,
-    deviation_pipeline: wgpu::RenderPipeline,
-    uniforms: wgpu::Buffer,
+    uniforms: OwnedBuffer,
     bind_group: wgpu::BindGroup,
     mesh: Option<Mesh>,
     path: Option<(OwnedBuffer, u32)>,
@@ -180,155 +192,36 @@ pub struct Viewer {
     moved: bool,
 }
 
-/// A viewer freed (its element removed from the page) gives its WebGPU device back at once,
-/// with every buffer and texture on it, rather than when the garbage collector comes: a page
-/// that makes and removes viewers holds only the live ones' devices. On WebGL2 the page loses
-/// the canvas's context itself (`spiralcam-viewer.js`).
-impl Drop for Viewer {
-    fn drop(&mut self) {
-        if self.backend == "WebGPU" {
-            self.device.destroy();
-        }
-    }
-}
-
 #[wasm_bindgen]
 impl Viewer {
-    /// Creates a viewer on the canvas: WebGPU if the browser offers an adapter, else WebGL2.
+    /// Creates a viewer on the canvas: WebGPU if the browser offers an adapter, else WebGL2;
+    /// on WebGPU with the page's device where another viewer holds one.
     /// Errors (no backend at all) become a JS exception with a clear message.
     pub async fn create(canvas: web_sys::HtmlCanvasElement) -> Result<Viewer, JsError> {
-        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
-        desc.backends = wgpu::Backends::BROWSER_WEBGPU | wgpu::Backends::GL;
-        let instance = wgpu::util::new_instance_with_webgpu_detection(desc).await;
         let (width, height) = (canvas.width().max(1), canvas.height().max(1));
-        // The surface comes first: the WebGL2 adapter is made from the canvas's context.
-        let surface = instance
-            .create_surface(wgpu::SurfaceTarget::Canvas(canvas))
-            .map_err(|e| {
-                JsError::new(&format!(
-                    "3-D view unavailable: no WebGPU or WebGL2 context on the canvas \
-                     (the browser offers neither, or the canvas is in use): {e}"
-                ))
-            })?;
-        let adapter = instance
-            .request_adapter(&wgpu::RequestAdapterOptions {
-                compatible_surface: Some(&surface),
-                ..Default::default()
-            })
-            .await
-            .map_err(|e| {
-                JsError::new(&format!(
-                    "3-D view unavailable: no WebGPU or WebGL2 adapter for the canvas ({e})"
-                ))
-            })?;
-        let backend = match adapter.get_info().backend {
-            wgpu::Backend::BrowserWebGpu => "WebGPU",
-            _ => "WebGL2",
-        };
-        let (device, queue) = adapter
-            .request_device(&wgpu::DeviceDescriptor {
-                label: Some("spiralcam viewer"),
-                required_limits: wgpu::Limits::downlevel_webgl2_defaults()
-                    .using_resolution(adapter.limits()),
-                ..Default::default()
-            })
-            .await
-            .map_err(|e| {
-                JsError::new(&format!(
-                    "3-D view: could not open the {backend} device ({e})"
-                ))
-            })?;
-        device.on_uncaptured_error(Arc::new(|e| {
-            web_sys::console::error_1(&format!("spiralcam viewer: {e}").into());
-        }));
-
-        let mut config = surface
-            .get_default_config(&adapter, width, height)
-            .ok_or_else(|| JsError::new("3-D view: the canvas is not supported by the adapter"))?;
-        // Colours are sRGB values already (like the CSS legend): write them to a plain format.
-        let caps = surface.get_capabilities(&adapter);
-        let plain = config.format.remove_srgb_suffix();
-        if caps.formats.contains(&plain) {
-            config.format = plain;
-        }
-        surface.configure(&device, &config);
-
-        let msaa = |f| {
-            adapter
-                .get_texture_format_features(f)
-                .flags
-                .sample_count_supported(4)
-        };
-        let sample_count = if msaa(config.format) && msaa(DEPTH_FORMAT) {
-            4
-        } else {
-            1
-        };
-
-        let source = format!(
-            "{}\n{}",
-            crate::colormap::wgsl(),
-            include_str!("shader.wgsl")
-        );
-        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("viewer shader"),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-        let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
+        let (gpu, surface) = Gpu::for_canvas(canvas).await?;
+        let config = gpu.configuration(&surface, width, height)?;
+        surface.configure(&gpu.device, &config);
+        let uniforms = OwnedBuffer(gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("viewer uniforms"),
             size: UNIFORM_SIZE,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
-        });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        }));
+        let bind_group = gpu.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("viewer uniforms"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: wgpu::BufferSize::new(UNIFORM_SIZE),
-                },
-                count: None,
-            }],
-        });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("viewer uniforms"),
-            layout: &layout,
+            layout: &gpu.uniforms_layout,
             entries: &[wgpu::BindGroupEntry {
                 binding: 0,
                 resource: uniforms.as_entire_binding(),
             }],
         });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("viewer"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipelines = PipelineSetup {
-            device: &device,
-            layout: &pipeline_layout,
-            shader: &shader,
-            format: config.format,
-            sample_count,
-        };
-        let surface_pipeline = pipelines.surface();
-        let path_pipeline = pipelines.path();
-        let deviation_pipeline = pipelines.deviation();
-        let targets = make_targets(&device, &config, sample_count);
-
+        let targets = make_targets(&gpu.device, &config, gpu.sample_count);
         let mut viewer = Viewer {
-            backend,
+            gpu,
             surface,
-            device,
-            queue,
             config,
-            sample_count,
             targets,
-            surface_pipeline,
-            path_pipeline,
-            deviation_pipeline,
             uniforms,
             bind_group,
             mesh: None,
@@ -345,9 +238,14 @@ impl Viewer {
         Ok(viewer)
     }
 
+    /// How many GPU devices the page's viewers have opened: on WebGPU one serves them all.
+    pub fn devices_opened() -> u32 {
+        gpu::devices_opened()
+    }
+
     /// "WebGPU" or "WebGL2": the backend actually in use.
     pub fn backend(&self) -> String {
-        self.backend.to_string()
+        self.gpu.backend.to_string()
     }
 
     /// The surface mesh: positions xyz (mm), unit normals xyz, triangle indices; z_min/z_max
@@ -385,7 +283,7 @@ impl Viewer {
             web_sys::console::error_1(&format!("spiralcam viewer: set_surface: {problem}").into());
         } else if !indices.is_empty() {
             let buffer = |label, contents: &[u8], usage| {
-                OwnedBuffer::new(&self.device, label, contents, usage)
+                OwnedBuffer::new(&self.gpu.device, label, contents, usage)
             };
             let index_bytes: Vec<u8> = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
             self.mesh = Some(Mesh {
@@ -416,7 +314,7 @@ impl Viewer {
         let count = xyz.len() / 6 * 2;
         self.path = (count >= 2).then(|| {
             let buffer = OwnedBuffer::new(
-                &self.device,
+                &self.gpu.device,
                 "path",
                 &f32_bytes(&xyz[..3 * count]),
                 wgpu::BufferUsages::VERTEX,
@@ -462,7 +360,7 @@ impl Viewer {
         }
         let buffer = |label, values: &[f32]| {
             OwnedBuffer::new(
-                &self.device,
+                &self.gpu.device,
                 label,
                 &f32_bytes(values),
                 wgpu::BufferUsages::VERTEX,
@@ -510,7 +408,7 @@ impl Viewer {
     /// New canvas size in CSS pixels and the devicePixelRatio; the drawing buffer is
     /// size × dpr, each at least 1 (and at most the device's texture limit).
     pub fn resize(&mut self, css_width: f32, css_height: f32, device_pixel_ratio: f32) {
-        let max = self.device.limits().max_texture_dimension_2d;
+        let max = self.gpu.device.limits().max_texture_dimension_2d;
         let dpr = if device_pixel_ratio.is_finite() && device_pixel_ratio > 0.0 {
             device_pixel_ratio
         } else {
@@ -531,8 +429,8 @@ impl Viewer {
         if (width, height) != (self.config.width, self.config.height) {
             self.config.width = width;
             self.config.height = height;
-            self.surface.configure(&self.device, &self.config);
-            self.targets = make_targets(&self.device, &self.config, self.sample_count);
+            self.surface.configure(&self.gpu.device, &self.config);
+            self.targets = make_targets(&self.gpu.device, &self.config, self.gpu.sample_count);
         }
     }
 
@@ -548,7 +446,7 @@ impl Viewer {
             Current::Success(frame) | Current::Suboptimal(frame) => frame,
             Current::Timeout | Current::Occluded => return Ok(()),
             Current::Outdated | Current::Lost => {
-                self.surface.configure(&self.device, &self.config);
+                self.surface.configure(&self.gpu.device, &self.config);
                 match self.surface.get_current_texture() {
                     Current::Success(frame) | Current::Suboptimal(frame) => frame,
                     Current::Timeout | Current::Occluded => return Ok(()),
@@ -570,10 +468,11 @@ impl Viewer {
             .texture
             .create_view(&wgpu::TextureViewDescriptor::default());
         let (target, resolve) = match &self.targets.msaa {
-            Some(msaa) => (msaa, Some(&view)),
+            Some(msaa) => (&msaa.view, Some(&view)),
             None => (&view, None),
         };
         let mut encoder = self
+            .gpu
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("frame"),
@@ -591,7 +490,7 @@ impl Viewer {
                     },
                 })],
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &self.targets.depth,
+                    view: &self.targets.depth.view,
                     depth_ops: Some(wgpu::Operations {
                         load: wgpu::LoadOp::Clear(1.0),
                         store: wgpu::StoreOp::Discard,
@@ -604,25 +503,25 @@ impl Viewer {
             });
             pass.set_bind_group(0, &self.bind_group, &[]);
             if let Some(mesh) = &self.mesh {
-                pass.set_pipeline(&self.surface_pipeline);
+                pass.set_pipeline(&self.gpu.surface_pipeline);
                 pass.set_vertex_buffer(0, mesh.positions.slice(..));
                 pass.set_vertex_buffer(1, mesh.normals.slice(..));
                 pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
                 pass.draw_indexed(0..mesh.index_count, 0, 0..1);
             }
             if let Some(program) = &self.deviation_path {
-                pass.set_pipeline(&self.deviation_pipeline);
+                pass.set_pipeline(&self.gpu.deviation_pipeline);
                 pass.set_vertex_buffer(0, program.positions.slice(..));
                 pass.set_vertex_buffer(1, program.deviations.slice(..));
                 pass.draw(0..program.count, 0..1);
             } else if let Some((buffer, count)) = &self.path {
-                pass.set_pipeline(&self.path_pipeline);
+                pass.set_pipeline(&self.gpu.path_pipeline);
                 pass.set_vertex_buffer(0, buffer.slice(..));
                 pass.draw(0..*count, 0..1);
             }
         }
-        self.queue.submit([encoder.finish()]);
-        self.queue.present(frame);
+        self.gpu.queue.submit([encoder.finish()]);
+        self.gpu.queue.present(frame);
         Ok(())
     }
 }
@@ -676,115 +575,9 @@ impl Viewer {
             }
             None => [0.0; 4],
         });
-        self.queue
+        self.gpu
+            .queue
             .write_buffer(&self.uniforms, 0, &f32_bytes(&data));
-    }
-}
-
-/// What the render pipelines share.
-struct PipelineSetup<'a> {
-    device: &'a wgpu::Device,
-    layout: &'a wgpu::PipelineLayout,
-    shader: &'a wgpu::ShaderModule,
-    format: wgpu::TextureFormat,
-    sample_count: u32,
-}
-
-impl PipelineSetup<'_> {
-    /// A pipeline drawing `topology` from `buffers` with the shader's `vs_<name>`/`fs_<name>`.
-    fn pipeline(
-        &self,
-        name: &str,
-        topology: wgpu::PrimitiveTopology,
-        buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
-    ) -> wgpu::RenderPipeline {
-        let (vs, fs) = (format!("vs_{name}"), format!("fs_{name}"));
-        self.device
-            .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(name),
-                layout: Some(self.layout),
-                vertex: wgpu::VertexState {
-                    module: self.shader,
-                    entry_point: Some(&vs),
-                    compilation_options: Default::default(),
-                    buffers,
-                },
-                primitive: wgpu::PrimitiveState {
-                    topology,
-                    ..Default::default()
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: DEPTH_FORMAT,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(wgpu::CompareFunction::LessEqual),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: wgpu::MultisampleState {
-                    count: self.sample_count,
-                    ..Default::default()
-                },
-                fragment: Some(wgpu::FragmentState {
-                    module: self.shader,
-                    entry_point: Some(&fs),
-                    compilation_options: Default::default(),
-                    targets: &[Some(self.format.into())],
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
-    }
-
-    /// The surface: triangles from a position and a normal buffer.
-    fn surface(&self) -> wgpu::RenderPipeline {
-        let position = wgpu::vertex_attr_array![0 => Float32x3];
-        let normal = wgpu::vertex_attr_array![1 => Float32x3];
-        let layout = |attributes| wgpu::VertexBufferLayout {
-            array_stride: 12,
-            step_mode: wgpu::VertexStepMode::Vertex,
-            attributes,
-        };
-        self.pipeline(
-            "surface",
-            wgpu::PrimitiveTopology::TriangleList,
-            &[Some(layout(&position)), Some(layout(&normal))],
-        )
-    }
-
-    /// A verified program's path: a line strip from a position and a deviation buffer.
-    fn deviation(&self) -> wgpu::RenderPipeline {
-        let position = wgpu::vertex_attr_array![0 => Float32x3];
-        let deviation = wgpu::vertex_attr_array![1 => Float32];
-        self.pipeline(
-            "deviation",
-            wgpu::PrimitiveTopology::LineStrip,
-            &[
-                Some(wgpu::VertexBufferLayout {
-                    array_stride: 12,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &position,
-                }),
-                Some(wgpu::VertexBufferLayout {
-                    array_stride: 4,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &deviation,
-                }),
-            ],
-        )
-    }
-
-    /// The path: a line list (segments) from a position buffer.
-    fn path(&self) -> wgpu::RenderPipeline {
-        let position = wgpu::vertex_attr_array![0 => Float32x3];
-        self.pipeline(
-            "path",
-            wgpu::PrimitiveTopology::LineList,
-            &[Some(wgpu::VertexBufferLayout {
-                array_stride: 12,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &position,
-            })],
-        )
     }
 }
 
@@ -795,22 +588,22 @@ fn make_targets(
     samples: u32,
 ) -> Targets {
     let texture = |label, format| {
-        device
-            .create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width: config.width,
-                    height: config.height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: samples,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
-                view_formats: &[],
-            })
-            .create_view(&wgpu::TextureViewDescriptor::default())
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width: config.width,
+                height: config.height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: samples,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        OwnedTexture { texture, view }
     };
     Targets {
         depth: texture("depth", DEPTH_FORMAT),

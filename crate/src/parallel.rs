@@ -2,7 +2,8 @@
 //! the module has no threads and spawning one would trap. Each item is computed alone, so a
 //! result never depends on how the work was split. [`fill_chunks`] splits one slice over the
 //! threads, [`fill_each`] hands its items out one at a time, [`both`] runs two stages side by
-//! side; [`pipeline`] streams batches
+//! side, [`read_ahead`] makes a record's next blocks while the caller reads the ones before;
+//! [`pipeline`] streams batches
 //! through them in order while the calling thread consumes the finished ones (a
 //! producer-consumer pipeline over `std::sync::mpsc` channels).
 
@@ -127,6 +128,63 @@ where
         }
     }
     first_error.map_or(Ok(()), |(_, e)| Err(e))
+}
+
+/// Reads a record of `n` items that `fill(first, block)` makes a block at a time (`block` items
+/// from `first`, the last shorter): `read` is handed a source `next(first, out)` that copies the
+/// items `first …` into `out`, asked for in order from 0. Where there are two workers the blocks
+/// are made on a second thread, up to two ahead of the reader, while the reader works through
+/// the ones before (a serial pass over a record beside the record's making); else each as it is
+/// asked for. The items are `fill`'s either way (each computed alone); a reader that stops early
+/// stops the making.
+pub fn read_ahead<T, R>(
+    n: usize,
+    block: usize,
+    fill: impl Fn(usize, &mut [T]) + Sync,
+    read: impl FnOnce(&mut dyn FnMut(usize, &mut [T])) -> R,
+) -> R
+where
+    T: Copy + Default + Send,
+{
+    let block = block.max(1);
+    if workers() <= 1 || n <= block {
+        return read(&mut |first, out| fill(first, out));
+    }
+    std::thread::scope(|scope| {
+        let (made, take) = std::sync::mpsc::sync_channel::<Vec<T>>(1);
+        let (spent, reuse) = std::sync::mpsc::channel::<Vec<T>>();
+        let fill = &fill;
+        scope.spawn(move || {
+            for first in (0..n).step_by(block) {
+                let mut buffer = reuse.try_recv().unwrap_or_default();
+                buffer.clear();
+                buffer.resize(block.min(n - first), T::default());
+                fill(first, &mut buffer);
+                if made.send(buffer).is_err() {
+                    return; // the reader is done
+                }
+            }
+        });
+        let (mut current, mut at, mut next) = (Vec::new(), 0, 0);
+        let mut source = move |first: usize, out: &mut [T]| {
+            assert_eq!(first, next, "read_ahead: the items are read in order");
+            let mut done = 0;
+            while done < out.len() {
+                if at == current.len() {
+                    let Ok(fresh) = take.recv() else {
+                        panic!("read_ahead: items past the record's {n} asked for");
+                    };
+                    let _ = spent.send(std::mem::replace(&mut current, fresh));
+                    at = 0;
+                }
+                let k = (current.len() - at).min(out.len() - done);
+                out[done..done + k].copy_from_slice(&current[at..at + k]);
+                (at, done) = (at + k, done + k);
+            }
+            next += out.len();
+        };
+        read(&mut source)
+    })
 }
 
 /// Streams batches of items through [`workers`] threads, handing the results on in order:
@@ -314,6 +372,44 @@ mod tests {
             _ => Ok(k),
         });
         assert_eq!(e, Err(17));
+    }
+
+    #[test]
+    fn a_record_read_ahead_is_its_fill_in_any_request_sizes_on_a_second_thread() {
+        let n = 10_007;
+        let here = std::thread::current().id();
+        let makers = std::sync::Mutex::new(std::collections::HashSet::new());
+        let fill = |first: usize, out: &mut [u64]| {
+            makers.lock().unwrap().insert(std::thread::current().id());
+            for (i, v) in (first..).zip(out.iter_mut()) {
+                *v = (i as u64).wrapping_mul(2_654_435_761) % 1_000_003;
+            }
+        };
+        let mut direct = vec![0; n];
+        fill(0, &mut direct);
+        makers.lock().unwrap().clear();
+        for block in [1, 7, 1000, 4096, n, 2 * n] {
+            let read = read_ahead(n, block, fill, |next| {
+                // Requests of changing sizes, across the blocks' ends.
+                let (mut got, mut first, mut size) = (vec![0; n], 0, 1);
+                while first < n {
+                    let k = size.min(n - first);
+                    next(first, &mut got[first..first + k]);
+                    (first, size) = (first + k, size * 3 % 1021 + 1);
+                }
+                got
+            });
+            assert_eq!(read, direct, "block {block}");
+        }
+        let made_elsewhere = makers.lock().unwrap().iter().any(|&t| t != here);
+        assert_eq!(made_elsewhere, workers() > 1);
+        // A reader that stops after a few items stops the making: this returns.
+        let few = read_ahead(n, 10, fill, |next| {
+            let mut three = [0; 3];
+            next(0, &mut three);
+            three
+        });
+        assert_eq!(few, direct[..3]);
     }
 
     #[test]

@@ -59,7 +59,7 @@
 //! `1 − T(ν)`, `T(ν) = (sin πν / (M·sin(πν/M)))²` ([`residual_gain`]): 1 at whole ν, at
 //! least 0.95 from ν = 1 on.
 
-use crate::parallel::{fill_chunks, fill_each, map_indices, workers};
+use crate::parallel::{fill_chunks, fill_each, map_indices, read_ahead, workers};
 use crate::path::{IndexedPoints, PathPoint, Spiral, WalkedRule};
 use std::borrow::Cow;
 use std::convert::Infallible;
@@ -821,7 +821,7 @@ impl UniformSignal {
             n,
             m,
             |j| values[j],
-            |c, mean| {
+            |c, mean, _| {
                 out[c] = mean;
                 ends.offer(c, mean);
             },
@@ -850,7 +850,7 @@ impl UniformSignal {
             n,
             m,
             |j| values[j],
-            |c, mean| {
+            |c, mean, _| {
                 if c < count {
                     head[c] = mean;
                 }
@@ -871,8 +871,8 @@ impl UniformSignal {
     }
 
     /// `values` less their [`Self::symmetric_part`], in their place, to the bit: each mean is
-    /// subtracted once the running sums have read its sample, and the ends (polynomials through
-    /// three means each) last, so the record is never held twice.
+    /// subtracted as the running sums hand it over, and the ends (polynomials through three
+    /// means each) last, so the record is never held twice.
     pub fn subtract_symmetric_part(&self, values: &mut [f64]) {
         let (n, m) = (values.len(), self.samples_per_rev);
         if n < 2 * m - 1 {
@@ -882,23 +882,17 @@ impl UniformSignal {
         }
         let mut ends = EndMeans::new(n, m);
         let cells = std::cell::Cell::from_mut(values).as_slice_of_cells();
-        // The mean at `c − 1` is subtracted when that at `c` is handed over: the sums have
-        // read that sample for the last time then.
-        let mut pending: Option<(usize, f64)> = None;
+        // Each mean is subtracted as it is handed over with its sample: the running sums read
+        // no sample up to its centre again.
         triangle_means(
             n,
             m,
             |j| cells[j].get(),
-            |c, mean| {
+            |c, mean, sample| {
                 ends.offer(c, mean);
-                if let Some((p, s)) = pending.replace((c, mean)) {
-                    cells[p].set(cells[p].get() - s);
-                }
+                cells[c].set(sample - mean);
             },
         );
-        if let Some((p, s)) = pending {
-            cells[p].set(cells[p].get() - s);
-        }
         let at = ends.extrapolation();
         for (j, v) in values.iter_mut().enumerate() {
             if let Some(e) = at(j) {
@@ -924,9 +918,12 @@ impl UniformSignal {
         let fill = |first: usize, out: &mut [f64]| {
             signal.resample_with(|i| signal.z_mm[i], m, first, out, |slot, v| *slot = v);
         };
+        let block = block.max(m);
         let means = |each: &mut dyn FnMut(usize, f64)| {
-            let window = std::cell::RefCell::new(Window::new(n, m + 1, block.max(m), &fill));
-            triangle_means(n, m, |j| window.borrow_mut().value(j), each);
+            read_ahead(n, block, fill, |source| {
+                let mut window = Window::new(n, m + 1, block, source);
+                triangle_means(n, m, |j| window.value(j), |c, mean, _| each(c, mean));
+            });
         };
         let mut ends = EndMeans::new(n, m);
         means(&mut |c, mean| ends.offer(c, mean));
@@ -963,7 +960,7 @@ impl UniformSignal {
         &self,
         n: usize,
         block: usize,
-        fill: impl Fn(usize, &mut [f64]),
+        fill: impl Fn(usize, &mut [f64]) + Sync,
     ) -> Vec<f32> {
         let m = self.samples_per_rev;
         if n < 2 * m - 1 {
@@ -972,23 +969,30 @@ impl UniformSignal {
             self.subtract_symmetric_part(&mut values);
             return values.into_iter().map(|v| v as f32).collect();
         }
-        let window = std::cell::RefCell::new(Window::new(n, m + 1, block.max(m), fill));
-        let value = |j: usize| window.borrow_mut().value(j);
-        let head: Vec<f64> = (0..m - 1).map(value).collect();
-        let mut out = vec![0.0f32; n];
-        let mut ends = EndMeans::new(n, m);
-        triangle_means(n, m, value, |c, mean| {
-            ends.offer(c, mean);
-            out[c] = (value(c) - mean) as f32;
-        });
-        let at = ends.extrapolation();
-        for j in (0..m - 1).chain(n - m + 1..n) {
-            if let Some(e) = at(j) {
-                let v = head.get(j).copied().unwrap_or_else(|| value(j));
-                out[j] = (v - e) as f32;
+        let block = block.max(m);
+        read_ahead(n, block, fill, |source| {
+            let mut window = Window::new(n, m + 1, block, source);
+            let head: Vec<f64> = (0..m - 1).map(|j| window.value(j)).collect();
+            let mut out = vec![0.0f32; n];
+            let mut ends = EndMeans::new(n, m);
+            triangle_means(
+                n,
+                m,
+                |j| window.value(j),
+                |c, mean, sample| {
+                    ends.offer(c, mean);
+                    out[c] = (sample - mean) as f32;
+                },
+            );
+            let at = ends.extrapolation();
+            for j in (0..m - 1).chain(n - m + 1..n) {
+                if let Some(e) = at(j) {
+                    let v = head.get(j).copied().unwrap_or_else(|| window.value(j));
+                    out[j] = (v - e) as f32;
+                }
             }
-        }
-        out
+            out
+        })
     }
 
     /// `values` on the grid, linearly interpolated at the path's angles (the last grid interval
@@ -1021,8 +1025,9 @@ impl UniformSignal {
 }
 
 /// The two-revolution triangle means of the `n` samples `value(j)` (`m` a revolution, n ≥
-/// 2m − 1) at the centres m − 1 … n − m, handed to `each(centre, mean)` in order. One-revolution
-/// moving sums B_i (of samples i … i + M − 1), then their moving sums (B_k … B_{k+M−1}): the
+/// 2m − 1) at the centres m − 1 … n − m, handed to `each(centre, mean, sample)` in order with
+/// the centre's sample. One-revolution moving sums B_i (of samples i … i + M − 1), then their
+/// moving sums (B_k … B_{k+M−1}): the
 /// triangle of half-width M around sample k + M − 1, by running sums (rounding grows like
 /// √n·ε, not n²·ε as with prefix sums of prefix sums). Each B_i leaves the second sum M after
 /// it entered, so one revolution of them is kept, in a ring (slot i mod M), not the whole
@@ -1030,8 +1035,8 @@ impl UniformSignal {
 fn triangle_means(
     n: usize,
     m: usize,
-    value: impl Fn(usize) -> f64,
-    mut each: impl FnMut(usize, f64),
+    mut value: impl FnMut(usize) -> f64,
+    mut each: impl FnMut(usize, f64, f64),
 ) {
     let base = value(0);
     let mut ring = Vec::with_capacity(m);
@@ -1043,15 +1048,21 @@ fn triangle_means(
     }
     let mut sum2: f64 = ring.iter().sum();
     let norm = (m * m) as f64;
-    each(m - 1, base + sum2 / norm);
+    // The sample at the centre is the one the next step's sum lets go (j − M = c).
+    let mut centre = value(m - 1);
+    each(m - 1, base + sum2 / norm, centre);
+    // B_{k−1}'s slot, (k − 1) mod M, counted round rather than divided for.
+    let mut slot = 0;
     for k in 1..=n + 1 - 2 * m {
         // B_{k+M−1} in, B_{k−1} out.
         let j = k + 2 * m - 2;
-        sum += value(j) - value(j - m);
-        let slot = (k - 1) % m;
+        sum += value(j) - centre;
         sum2 += sum - ring[slot];
         ring[slot] = sum;
-        each(k + m - 1, base + sum2 / norm);
+        slot = if slot + 1 == m { 0 } else { slot + 1 };
+        let c = k + m - 1;
+        centre = value(c);
+        each(c, base + sum2 / norm, centre);
     }
 }
 
@@ -1066,7 +1077,7 @@ struct Window<F> {
     held: Vec<f64>,
 }
 
-impl<F: Fn(usize, &mut [f64])> Window<F> {
+impl<F: FnMut(usize, &mut [f64])> Window<F> {
     fn new(n: usize, back: usize, block: usize, fill: F) -> Self {
         let block = block.clamp(1, n.max(1));
         Self {
@@ -1106,22 +1117,32 @@ impl<F: Fn(usize, &mut [f64])> Window<F> {
 struct EndMeans {
     n: usize,
     m: usize,
+    /// Those centres in increasing order, and how many of them were handed over.
+    wanted: Vec<usize>,
     kept: Vec<(usize, f64)>,
 }
 
 impl EndMeans {
     fn new(n: usize, m: usize) -> Self {
+        let (first, last) = (m - 1, n - m);
+        let mut wanted: Vec<usize> = (0..3)
+            .flat_map(|i| [first + i * m, last.wrapping_sub(i * m)])
+            .filter(|c| (first..=last).contains(c))
+            .collect();
+        wanted.sort_unstable();
+        wanted.dedup();
         Self {
             n,
             m,
+            wanted,
             kept: Vec::with_capacity(6),
         }
     }
 
-    /// Keeps the mean at centre `c` if an end is extrapolated from it.
+    /// Keeps the mean at centre `c` if an end is extrapolated from it. The centres come in
+    /// order, each once ([`triangle_means`]), so one comparison a centre.
     fn offer(&mut self, c: usize, mean: f64) {
-        let (m, first, last) = (self.m, self.m - 1, self.n - self.m);
-        if (0..3).any(|i| c == first + i * m || c + i * m == last) {
+        if self.wanted.get(self.kept.len()) == Some(&c) {
             self.kept.push((c, mean));
         }
     }
@@ -1586,16 +1607,18 @@ pub(crate) mod tests {
             let mut double: Vec<f64> = (0..n).map(value).collect();
             grid.subtract_symmetric_part(&mut double);
             for block in [1, m / 2, m, 1000, n, usize::MAX] {
-                let made = std::cell::Cell::new(0);
+                let made = std::sync::atomic::AtomicUsize::new(0);
                 let fill = |first: usize, out: &mut [f64]| {
-                    assert_eq!(first, made.get(), "blocks in order");
-                    made.set(first + out.len());
+                    let ordering = std::sync::atomic::Ordering::Relaxed;
+                    assert_eq!(first, made.load(ordering), "blocks in order");
+                    made.store(first + out.len(), ordering);
                     for (j, v) in (first..).zip(out.iter_mut()) {
                         *v = value(j);
                     }
                 };
                 let narrow = grid.narrow_residual(n, block, fill);
-                assert_eq!((narrow.len(), made.get()), (n, n), "n {n}, block {block}");
+                let made = made.into_inner();
+                assert_eq!((narrow.len(), made), (n, n), "n {n}, block {block}");
                 for (j, (a, b)) in narrow.iter().zip(&double).enumerate() {
                     let want = (*b as f32).to_bits();
                     assert_eq!(a.to_bits(), want, "n {n}, block {block}: sample {j}");

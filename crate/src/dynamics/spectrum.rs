@@ -182,13 +182,22 @@ fn modulus(c: Complex<f64>) -> f64 {
     (c.re * c.re + c.im * c.im).sqrt()
 }
 
-/// The Hann window applied to `x` in place, and its sum (its gain), added up as it is applied.
+/// The Hann window applied to `x` in place, on the cores, and its sum (its gain), added up in
+/// order beside them.
 fn apply_hann(x: &mut [f64]) -> f64 {
-    let (mut gain, window) = (0.0, Hann::new(x.len()));
-    for (v, w) in x.iter_mut().zip(window.from(0)) {
-        gain += w;
-        *v *= w;
-    }
+    let window = Hann::new(x.len());
+    let n = x.len();
+    let (gain, Ok(())) = both(
+        || window.from(0).take(n).fold(0.0, |gain, w| gain + w),
+        || {
+            fill_chunks(x, |first, part| {
+                for (v, w) in part.iter_mut().zip(window.from(first)) {
+                    *v *= w;
+                }
+                Ok::<(), Infallible>(())
+            })
+        },
+    );
     gain
 }
 

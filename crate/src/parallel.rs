@@ -1,11 +1,13 @@
 //! Work split over the machine's cores: every core natively, one thread in the browser, where
 //! the module has no threads and spawning one would trap. Each item is computed alone, so a
 //! result never depends on how the work was split. [`fill_chunks`] splits one slice over the
-//! threads, [`fill_each`] hands its items out one at a time, [`both`] runs two stages side by
+//! threads, [`map_parts`] a range of items, [`fill_each`] hands its items out one at a time, [`both`] runs two stages side by
 //! side, [`read_ahead`] makes a record's next blocks while the caller reads the ones before;
 //! [`pipeline`] streams batches
 //! through them in order while the calling thread consumes the finished ones (a
 //! producer-consumer pipeline over `std::sync::mpsc` channels).
+
+use std::ops::Range;
 
 /// Threads for parallel work: every core natively, one in the browser.
 pub fn workers() -> usize {
@@ -75,6 +77,21 @@ pub fn map_indices(n: usize, value: impl Fn(usize) -> f64 + Sync) -> Vec<f64> {
         Ok::<(), std::convert::Infallible>(())
     });
     out
+}
+
+/// `part(range)` of `0..n` cut into one contiguous range a worker, in order (one range on one
+/// worker): a pass over many items whose parts' results are then combined, as a maximum or a
+/// first position, the same whichever way the items were cut.
+pub fn map_parts<T: Send>(n: usize, part: impl Fn(Range<usize>) -> T + Sync) -> Vec<T> {
+    let size = n.div_ceil(workers()).max(1);
+    let mut out: Vec<Option<T>> = (0..n.div_ceil(size).max(1)).map(|_| None).collect();
+    let Ok(()) = fill_chunks(&mut out, |first, slots| {
+        for (p, slot) in (first..).zip(slots.iter_mut()) {
+            *slot = Some(part(p * size..((p + 1) * size).min(n)));
+        }
+        Ok::<(), std::convert::Infallible>(())
+    });
+    out.into_iter().flatten().collect()
 }
 
 /// Fills `out[k]` with `make(k)` on [`workers`] threads, each taking the next item as it
@@ -410,6 +427,16 @@ mod tests {
             three
         });
         assert_eq!(few, direct[..3]);
+    }
+
+    #[test]
+    fn parts_cover_the_range_once_in_order() {
+        for n in [0, 1, 2, 7, 1000] {
+            let parts = map_parts(n, |r| r);
+            assert!((1..=workers().max(1)).contains(&parts.len()), "n {n}");
+            let items: Vec<usize> = parts.into_iter().flatten().collect();
+            assert_eq!(items, (0..n).collect::<Vec<_>>(), "n {n}");
+        }
     }
 
     #[test]

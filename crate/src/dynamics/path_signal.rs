@@ -59,7 +59,7 @@
 //! `1 − T(ν)`, `T(ν) = (sin πν / (M·sin(πν/M)))²` ([`residual_gain`]): 1 at whole ν, at
 //! least 0.95 from ν = 1 on.
 
-use crate::parallel::{fill_chunks, fill_each, map_indices, read_ahead, workers};
+use crate::parallel::{fill_chunks, fill_each, map_indices, map_parts, read_ahead, workers};
 use crate::path::{IndexedPoints, PathPoint, Spiral, WalkedRule};
 use std::borrow::Cow;
 use std::convert::Infallible;
@@ -401,11 +401,22 @@ impl PathSignal {
         let finite = |i: usize| {
             self.theta(i).is_finite() && self.rho(i).is_finite() && self.z_mm[i].is_finite()
         };
-        if let Some(index) = (0..z).position(|i| !finite(i)) {
+        // The first point not finite, and the first whose angle goes back, over parts of the
+        // path on the cores.
+        let first_in = |points: Range<usize>| {
+            let back = |&i: &usize| i > 0 && self.angle(i) < self.angle(i - 1);
+            let not_finite = points.clone().find(|&i| !finite(i));
+            (
+                not_finite,
+                not_finite.map_or_else(|| points.clone().find(back), |_| None),
+            )
+        };
+        let parts = map_parts(z, first_in);
+        if let Some(index) = parts.iter().find_map(|p| p.0) {
             return Err(SignalError::NotFinite { index });
         }
-        if let Some(i) = (1..a).position(|i| self.angle(i) < self.angle(i - 1)) {
-            return Err(SignalError::NotAdvancing { index: i + 1 });
+        if let Some(i) = parts.iter().find_map(|p| p.1) {
+            return Err(SignalError::NotAdvancing { index: i });
         }
         let span_rad = self.span_rad();
         if self.len() < 3 || span_rad <= 0.0 {

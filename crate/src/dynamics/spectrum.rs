@@ -86,12 +86,13 @@ use crate::dynamics::path_signal::{
 use crate::dynamics::real_transform::{
     self, RealForward, RealInverse, Twiddles, in_place, real_values_of,
 };
-use crate::parallel::{both, fill_chunks, fill_each};
+use crate::parallel::{both, fill_chunks, fill_each, map_parts};
 use rustfft::FftDirection;
 use rustfft::num_complex::Complex;
 use serde::Serialize;
 use std::convert::Infallible;
 use std::f64::consts::{PI, TAU};
+use std::ops::Range;
 
 /// The most peaks listed.
 pub const MAX_PEAKS: usize = 8;
@@ -681,7 +682,10 @@ struct RadiusBands {
 
 impl RadiusBands {
     fn of(signal: &PathSignal, count: usize) -> Self {
-        let rho_max = (0..signal.len()).map(|i| signal.rho(i)).fold(0.0, f64::max);
+        let largest = |points: Range<usize>| points.map(|i| signal.rho(i)).fold(0.0, f64::max);
+        let rho_max = map_parts(signal.len(), largest)
+            .into_iter()
+            .fold(0.0, f64::max);
         let count = count.min(1 << 16);
         let width = if count > 0 {
             rho_max / count as f64
@@ -709,11 +713,20 @@ impl RadiusBands {
     /// band), widened by a revolution either side for the roll-off.
     fn stretches(&self, signal: &PathSignal) -> Vec<(Vec<usize>, f64, f64)> {
         let n = signal.len();
-        // Each band's first and last point.
+        // Each band's first and last point, over parts of the path on the cores.
+        let reach_in = |points: Range<usize>| {
+            let mut reach = vec![(usize::MAX, 0); self.count];
+            for i in points {
+                let r = &mut reach[self.of_radius(signal.rho(i))];
+                *r = (r.0.min(i), i);
+            }
+            reach
+        };
         let mut reach = vec![(usize::MAX, 0); self.count];
-        for i in 0..n {
-            let r = &mut reach[self.of_radius(signal.rho(i))];
-            *r = (r.0.min(i), i);
+        for part in map_parts(n, reach_in) {
+            for (r, p) in reach.iter_mut().zip(part) {
+                *r = (r.0.min(p.0), r.1.max(p.1));
+            }
         }
         let angle = |i: usize| signal.angle(i.min(n - 1));
         // A stretch's bands and its first and last point.

@@ -964,9 +964,10 @@ impl UniformSignal {
 
     /// [`Self::subtract_symmetric_part`] of the `n` samples that `fill(first, block)` writes
     /// (the samples `first …` in `block`), each rounded to single precision: to the bit the
-    /// double-precision residual rounded. The samples are made `block` at a time and held a
-    /// block and a revolution at a time (the triangle means read a revolution back), so that
-    /// only the single-precision record is held whole: for a bandwidth figure of a long grid.
+    /// double-precision residual rounded. The samples are made `block` at a time, the next
+    /// blocks on a second core while the triangle means run ([`read_ahead`]), and held a block
+    /// and a revolution at a time (the means read a revolution back), so that only the
+    /// single-precision record is held whole: for a bandwidth figure of a long grid.
     pub fn narrow_residual(
         &self,
         n: usize,
@@ -1038,11 +1039,11 @@ impl UniformSignal {
 /// The two-revolution triangle means of the `n` samples `value(j)` (`m` a revolution, n ≥
 /// 2m − 1) at the centres m − 1 … n − m, handed to `each(centre, mean, sample)` in order with
 /// the centre's sample. One-revolution moving sums B_i (of samples i … i + M − 1), then their
-/// moving sums (B_k … B_{k+M−1}): the
-/// triangle of half-width M around sample k + M − 1, by running sums (rounding grows like
-/// √n·ε, not n²·ε as with prefix sums of prefix sums). Each B_i leaves the second sum M after
-/// it entered, so one revolution of them is kept, in a ring (slot i mod M), not the whole
-/// record. When the mean at a centre c is handed over, no later one reads a sample before c.
+/// moving sums (B_k … B_{k+M−1}): the triangle of half-width M around sample k + M − 1, by
+/// running sums (rounding grows like √n·ε, not n²·ε as with prefix sums of prefix sums). Each
+/// B_i leaves the second sum M after it entered, so one revolution of them is kept, in a ring
+/// (slot i mod M), not the whole record. Once the mean at a centre c is handed over, no
+/// sample up to c is read again.
 fn triangle_means(
     n: usize,
     m: usize,
@@ -1128,7 +1129,7 @@ impl<F: FnMut(usize, &mut [f64])> Window<F> {
 struct EndMeans {
     n: usize,
     m: usize,
-    /// Those centres in increasing order, and how many of them were handed over.
+    /// Those centres in increasing order: the next to keep is `wanted[kept.len()]`.
     wanted: Vec<usize>,
     kept: Vec<(usize, f64)>,
 }

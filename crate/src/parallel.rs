@@ -1,11 +1,11 @@
 //! Work split over the machine's cores: every core natively, one thread in the browser, where
 //! the module has no threads and spawning one would trap. Each item is computed alone, so a
 //! result never depends on how the work was split. [`fill_chunks`] splits one slice over the
-//! threads, [`map_parts`] a range of items, [`fill_each`] hands its items out one at a time, [`both`] runs two stages side by
-//! side, [`read_ahead`] makes a record's next blocks while the caller reads the ones before;
-//! [`pipeline`] streams batches
-//! through them in order while the calling thread consumes the finished ones (a
-//! producer-consumer pipeline over `std::sync::mpsc` channels).
+//! threads, [`map_parts`] a range of items, [`fill_each`] hands its items out one at a time,
+//! [`both`] runs two stages side by side, [`read_ahead`] makes a record's next blocks while the
+//! caller reads the ones before; [`pipeline`] streams batches through them in order while the
+//! calling thread consumes the finished ones (a producer-consumer pipeline over
+//! `std::sync::mpsc` channels).
 
 use std::ops::Range;
 

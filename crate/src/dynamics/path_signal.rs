@@ -403,13 +403,10 @@ impl PathSignal {
         };
         // The first point not finite, and the first whose angle goes back, over parts of the
         // path on the cores.
-        let first_in = |points: Range<usize>| {
-            let back = |&i: &usize| i > 0 && self.angle(i) < self.angle(i - 1);
-            let not_finite = points.clone().find(|&i| !finite(i));
-            (
-                not_finite,
-                not_finite.map_or_else(|| points.clone().find(back), |_| None),
-            )
+        let back = |&i: &usize| i > 0 && self.angle(i) < self.angle(i - 1);
+        let first_in = |points: Range<usize>| match points.clone().find(|&i| !finite(i)) {
+            Some(i) => (Some(i), None),
+            None => (None, points.clone().find(back)),
         };
         let parts = map_parts(z, first_in);
         if let Some(index) = parts.iter().find_map(|p| p.0) {

@@ -186,8 +186,8 @@ fn modulus(c: Complex<f64>) -> f64 {
 /// The Hann window applied to `x` in place, on the cores, and its sum (its gain), added up in
 /// order beside them.
 fn apply_hann(x: &mut [f64]) -> f64 {
-    let window = Hann::new(x.len());
     let n = x.len();
+    let window = Hann::new(n);
     let (gain, Ok(())) = both(
         || window.from(0).take(n).fold(0.0, |gain, w| gain + w),
         || {

@@ -211,9 +211,7 @@ impl Gpu {
         width: u32,
         height: u32,
     ) -> Result<wgpu::SurfaceConfiguration, JsError> {
-        let mut config = surface
-            .get_default_config(&self.adapter, width, height)
-            .ok_or_else(|| JsError::new("3-D view: the canvas is not supported by the adapter"))?;
+        let mut config = default_config(surface, &self.adapter, width, height)?;
         config.format = self.format;
         Ok(config)
     }
@@ -243,10 +241,7 @@ fn canvas_format(
     surface: &wgpu::Surface<'static>,
     adapter: &wgpu::Adapter,
 ) -> Result<wgpu::TextureFormat, JsError> {
-    let preferred = surface
-        .get_default_config(adapter, 1, 1)
-        .ok_or_else(|| JsError::new("3-D view: the canvas is not supported by the adapter"))?
-        .format;
+    let preferred = default_config(surface, adapter, 1, 1)?.format;
     let plain = preferred.remove_srgb_suffix();
     Ok(
         if surface.get_capabilities(adapter).formats.contains(&plain) {
@@ -255,6 +250,18 @@ fn canvas_format(
             preferred
         },
     )
+}
+
+/// wgpu's default configuration of `surface` on `adapter`, `width` × `height` pixels.
+fn default_config(
+    surface: &wgpu::Surface<'static>,
+    adapter: &wgpu::Adapter,
+    width: u32,
+    height: u32,
+) -> Result<wgpu::SurfaceConfiguration, JsError> {
+    surface
+        .get_default_config(adapter, width, height)
+        .ok_or_else(|| JsError::new("3-D view: the canvas is not supported by the adapter"))
 }
 
 /// What the render pipelines share.

@@ -4,13 +4,23 @@
 //! one-spiral program ([`super::NcWriter`]), the programs with passes ([`super::program`]) and
 //! their child programs.
 
-use super::number::{push_fixed, push_scaled, scaled};
+use super::number::{MAX_SCALED_LEN, push_fixed, push_scaled, put_scaled, scaled};
 use super::{Axis, Conventions, NcError, Style, Words};
 use crate::job::{FeedMode, OutputSpec};
 use crate::path::PathPoint;
 
 /// Room for the text of an F word: ` F`, a sign, 19 digits, the point, with room.
 const F_TEXT: usize = 32;
+
+/// Room for a block's prefix (`G1 ` or none).
+const PREFIX: usize = 4;
+
+/// Room for the words of a block: three axes and the servo's, each a space, a letter and a
+/// number.
+const WORDS_ROOM: usize = 4 * (2 + MAX_SCALED_LEN);
+
+/// Room for a whole block: its prefix, words, F and newline.
+const BLOCK_ROOM: usize = PREFIX + WORDS_ROOM + F_TEXT + 1;
 
 /// Formats blocks into a line buffer.
 #[derive(Debug, Clone)]
@@ -29,6 +39,9 @@ pub struct Blocks {
     /// stays the same.
     f_text: [u8; F_TEXT],
     f_len: usize,
+    /// The dialect's block prefix, its first `prefix_len` bytes.
+    prefix: [u8; PREFIX],
+    prefix_len: usize,
     /// The line being formatted.
     pub line: Vec<u8>,
 }
@@ -36,8 +49,12 @@ pub struct Blocks {
 impl Blocks {
     /// Blocks of `spec`'s dialect at `rpm`.
     pub fn new(spec: &OutputSpec, rpm: f64) -> Self {
+        let style = spec.style();
+        let mut prefix = [0; PREFIX];
+        let prefix_len = style.block_prefix.len();
+        prefix[..prefix_len].copy_from_slice(style.block_prefix.as_bytes());
         Self {
-            style: spec.style(),
+            style,
             conv: spec.conventions(),
             feed_mode: spec.feed_mode,
             decimals_f: spec.decimals_f(),
@@ -47,7 +64,9 @@ impl Blocks {
             last_f: None,
             f_text: [0; F_TEXT],
             f_len: 0,
-            line: Vec::with_capacity(128),
+            prefix,
+            prefix_len,
+            line: Vec::with_capacity(BLOCK_ROOM),
         }
     }
 
@@ -85,39 +104,49 @@ impl Blocks {
     }
 
     /// Formats the block that moves to `p` with words `w` into [`Blocks::line`] (cleared
-    /// first).
+    /// first): written by index into a window of fixed room, cut to its length once.
     pub fn block(&mut self, p: &PathPoint, w: Words) -> Result<(), NcError> {
-        self.line.clear();
-        self.line
-            .extend_from_slice(self.style.block_prefix.as_bytes());
-        self.push_words(w);
-        if self.feed_mode.per_block() {
-            let prev = self.last_theta.unwrap_or(p.theta);
-            let dc = (p.theta - prev).abs().to_degrees();
-            let f = self.feed_mode.block_f(self.rpm, dc);
-            let units = scaled(f, self.decimals_f).ok_or(NcError::Unwritable {
-                index: p.index,
-                what: "F",
-                value: f,
-                at: Some((p.rho, p.theta)),
-            })?;
-            if self.last_f != Some(units) {
-                let start = self.line.len();
-                self.line.extend_from_slice(b" F");
-                push_scaled(&mut self.line, units, self.decimals_f);
-                self.f_len = self.line.len() - start;
-                self.f_text[..self.f_len].copy_from_slice(&self.line[start..]);
-                self.last_f = Some(units);
-            } else if self.style.feed_every_block {
-                // A copy of fixed size, cut to the text's: no library call a block.
-                let start = self.line.len();
-                self.line.extend_from_slice(&self.f_text);
-                self.line.truncate(start + self.f_len);
-            }
+        let feed = self.feed_word(p)?;
+        let mut line = std::mem::take(&mut self.line);
+        line.clear();
+        line.extend_from_slice(&[0; BLOCK_ROOM]);
+        line[..PREFIX].copy_from_slice(&self.prefix);
+        let mut i = self.put_words(&mut line, self.prefix_len, w);
+        if feed {
+            // A copy of fixed size, cut to the text's: no library call a block.
+            line[i..i + F_TEXT].copy_from_slice(&self.f_text);
+            i += self.f_len;
         }
-        self.line.push(b'\n');
+        line[i] = b'\n';
+        line.truncate(i + 1);
+        self.line = line;
         self.last_theta = Some(p.theta);
         self.fits(p.index)
+    }
+
+    /// Whether the block to `p` writes F, its text then in `f_text`: under `G93` F follows the
+    /// C step from the last block, written where it changes or on every block as the dialect
+    /// does.
+    fn feed_word(&mut self, p: &PathPoint) -> Result<bool, NcError> {
+        if !self.feed_mode.per_block() {
+            return Ok(false);
+        }
+        let prev = self.last_theta.unwrap_or(p.theta);
+        let dc = (p.theta - prev).abs().to_degrees();
+        let f = self.feed_mode.block_f(self.rpm, dc);
+        let units = scaled(f, self.decimals_f).ok_or(NcError::Unwritable {
+            index: p.index,
+            what: "F",
+            value: f,
+            at: Some((p.rho, p.theta)),
+        })?;
+        if self.last_f == Some(units) {
+            return Ok(self.style.feed_every_block);
+        }
+        self.f_text[..2].copy_from_slice(b" F");
+        self.f_len = put_scaled(&mut self.f_text, 2, units, self.decimals_f);
+        self.last_f = Some(units);
+        Ok(true)
     }
 
     /// Refuses a line longer than the dialect's or the job's limit.
@@ -135,47 +164,79 @@ impl Blocks {
 
     /// The X and C words of `w` in the dialect's order.
     pub fn push_xc(&mut self, w: Words) {
-        let mut first = true;
+        let mut line = std::mem::take(&mut self.line);
+        let start = line.len();
+        line.extend_from_slice(&[0; WORDS_ROOM]);
+        let mut i = start;
         for axis in self.style.words {
             if axis == Axis::Z {
                 continue;
             }
-            if !first {
-                self.line.push(b' ');
+            if i > start {
+                line[i] = b' ';
+                i += 1;
             }
-            first = false;
-            self.push_word(axis, w);
+            i = self.put_word(&mut line, i, axis, w);
         }
+        line.truncate(i);
+        self.line = line;
     }
 
     /// Every word of `w` in the dialect's order, the servo's last.
     pub fn push_words(&mut self, w: Words) {
-        for (i, axis) in self.style.words.into_iter().enumerate() {
-            if i > 0 {
-                self.line.push(b' ');
-            }
-            self.push_word(axis, w);
-        }
-        self.push_fts_word(w);
+        let mut line = std::mem::take(&mut self.line);
+        let start = line.len();
+        line.extend_from_slice(&[0; WORDS_ROOM]);
+        let end = self.put_words(&mut line, start, w);
+        line.truncate(end);
+        self.line = line;
     }
 
     /// ` W…` when `w` is split.
     pub fn push_fts_word(&mut self, w: Words) {
-        if let Some(units) = w.w {
-            self.line.push(b' ');
-            self.line.push(self.conv.fts_word);
-            push_scaled(&mut self.line, units, self.conv.decimals_xz);
+        let mut line = std::mem::take(&mut self.line);
+        let start = line.len();
+        line.extend_from_slice(&[0; 2 + MAX_SCALED_LEN]);
+        let end = self.put_fts_word(&mut line, start, w);
+        line.truncate(end);
+        self.line = line;
+    }
+
+    /// [`Blocks::push_words`] at `text[at..]`, which has [`WORDS_ROOM`] bytes; returns where
+    /// the words end.
+    fn put_words(&self, text: &mut [u8], at: usize, w: Words) -> usize {
+        let mut i = at;
+        for (k, axis) in self.style.words.into_iter().enumerate() {
+            if k > 0 {
+                text[i] = b' ';
+                i += 1;
+            }
+            i = self.put_word(text, i, axis, w);
+        }
+        self.put_fts_word(text, i, w)
+    }
+
+    /// [`Blocks::push_fts_word`] at `text[at..]`; returns where it ends.
+    fn put_fts_word(&self, text: &mut [u8], at: usize, w: Words) -> usize {
+        match w.w {
+            Some(units) => {
+                text[at] = b' ';
+                text[at + 1] = self.conv.fts_word;
+                put_scaled(text, at + 2, units, self.conv.decimals_xz)
+            }
+            None => at,
         }
     }
 
-    fn push_word(&mut self, axis: Axis, w: Words) {
+    /// The word of `axis` at `text[at..]`; returns where it ends.
+    fn put_word(&self, text: &mut [u8], at: usize, axis: Axis, w: Words) -> usize {
         let (letter, units, d) = match axis {
             Axis::C => (b'C', w.c, self.conv.decimals_c),
             Axis::X => (b'X', w.x, self.conv.decimals_xz),
             Axis::Z => (b'Z', w.z, self.conv.decimals_xz),
         };
-        self.line.push(letter);
-        push_scaled(&mut self.line, units, d);
+        text[at] = letter;
+        put_scaled(text, at + 1, units, d)
     }
 
     /// `Z` and the height `z` mm (signed by the conventions).

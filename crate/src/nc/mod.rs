@@ -185,7 +185,7 @@ impl Conventions {
         let mut c = scaled(self.c_sign * theta.to_degrees(), self.decimals_c)
             .ok_or_else(|| bad("C", theta))?;
         if self.wrap_c {
-            c = c.rem_euclid(360 * 10i64.pow(self.decimals_c));
+            c = wrap(c, 360 * number::pow10(self.decimals_c));
         }
         Ok(Words { c, x, z, w: None })
     }
@@ -218,6 +218,24 @@ impl Conventions {
             value: z,
             at: None,
         })
+    }
+}
+
+/// `c` modulo `turn` (> 0) in `[0, turn)`, as `rem_euclid`: below 2⁵² the quotient from a
+/// floating-point product, off by at most one and corrected, instead of a 64-bit division
+/// every block.
+fn wrap(c: i64, turn: i64) -> i64 {
+    if c.unsigned_abs() >= 1 << 52 {
+        return c.rem_euclid(turn);
+    }
+    let q = (c as f64 * (1.0 / turn as f64)).floor() as i64;
+    let r = c - q * turn;
+    if r < 0 {
+        r + turn
+    } else if r >= turn {
+        r - turn
+    } else {
+        r
     }
 }
 
@@ -616,6 +634,38 @@ mod tests {
             ascii_comment("R 2.84 mm (−44.4 µm), 60°"),
             "R 2.84 mm [-44.4 um], 60 deg"
         );
+    }
+
+    #[test]
+    fn wrap_is_rem_euclid() {
+        // Every turn's size written (0 to 9 decimals), around every multiple of a turn up to
+        // 10⁶ turns either way, at the fast path's limit and beyond.
+        let mut x = 0x2545_f491_4f6c_dd1d_u64;
+        for d in 0..=number::MAX_DECIMALS {
+            let turn = 360 * number::pow10(d);
+            for k in (-1_000_000i64..=1_000_000).step_by(997) {
+                for off in [-2, -1, 0, 1, 2, turn / 2, turn - 1] {
+                    let c = k * turn + off;
+                    assert_eq!(wrap(c, turn), c.rem_euclid(turn), "{c} {turn}");
+                }
+            }
+            for _ in 0..100_000 {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                let c = (x as i64) >> (x % 40);
+                assert_eq!(wrap(c, turn), c.rem_euclid(turn), "{c} {turn}");
+            }
+            for c in [
+                (1i64 << 52) - 1,
+                1 << 52,
+                -(1 << 52),
+                i64::MAX,
+                i64::MIN + 1,
+            ] {
+                assert_eq!(wrap(c, turn), c.rem_euclid(turn), "{c} {turn}");
+            }
+        }
     }
 
     #[test]

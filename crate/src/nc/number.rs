@@ -1,6 +1,7 @@
 //! Fixed-point decimal formatting for NC words, without allocation: the value is rounded once to
-//! an integer count of the last digit (`round(v·10^d)`, ties away from zero), then written digit
-//! by digit. Negative zero prints as zero, so `-0.000000` never appears; non-finite values and
+//! an integer count of the last digit (`round(v·10^d)`, ties away from zero), then written left
+//! to right, its integer part and its decimals each as eight digits at once by arithmetic on
+//! the lanes of a 64-bit word (SWAR) where they fit, else digit pair by digit pair. Negative zero prints as zero, so `-0.000000` never appears; non-finite values and
 //! values beyond ±9·10¹⁸ units of the last digit are refused, so NaN never reaches a file.
 
 pub use crate::job::output::MAX_DECIMALS;
@@ -52,35 +53,89 @@ pub fn scaled(v: f64, decimals: u32) -> Option<i64> {
     Some(s)
 }
 
-/// The most bytes [`push_scaled`] appends: a sign, 19 digits, the point and a leading zero,
-/// with room.
-const MAX_SCALED_LEN: usize = 24;
+/// The room [`put_scaled`] needs from where it writes: a sign, 19 digits, the point and a
+/// leading zero, with room for its fixed-size stores past the text.
+pub const MAX_SCALED_LEN: usize = 24;
 
-/// Appends `units · 10^−decimals` with exactly `decimals` digits after the point: its length
-/// is counted first, then the text is built right to left (the decimals, the point, the integer
-/// part, the sign) in a window of fixed size appended to `buf` and cut to that length. A copy
-/// of a length known only at run time would be a library call for every word of a program.
+/// Appends `units · 10^−decimals` with exactly `decimals` digits after the point
+/// ([`put_scaled`] in a window of fixed size appended to `buf` and cut to the text's length: a
+/// copy of a length known only at run time would be a library call for every word of a
+/// program).
 pub fn push_scaled(buf: &mut Vec<u8>, units: i64, decimals: u32) {
-    // The programs' usual decimals as constants: their divisions become multiplications and
-    // the loop over the decimals unrolls.
+    let start = buf.len();
+    buf.extend_from_slice(&[0; MAX_SCALED_LEN]);
+    let end = put_scaled(&mut buf[start..], 0, units, decimals);
+    buf.truncate(start + end);
+}
+
+/// Writes `units · 10^−decimals` with exactly `decimals` digits after the point at
+/// `text[at..]`, which has room for [`MAX_SCALED_LEN`] bytes (bytes past the text may be
+/// overwritten); returns where the text ends.
+#[inline]
+pub fn put_scaled(text: &mut [u8], at: usize, units: i64, decimals: u32) -> usize {
+    // The programs' usual decimals as constants: their divisions become multiplications.
     match decimals {
-        3 => push_decimals(buf, units, 3),
-        5 => push_decimals(buf, units, 5),
-        6 => push_decimals(buf, units, 6),
-        d => push_decimals(buf, units, d),
+        3 => put_decimals(text, at, units, 3),
+        5 => put_decimals(text, at, units, 5),
+        6 => put_decimals(text, at, units, 6),
+        d => put_decimals(text, at, units, d),
     }
 }
 
-/// [`push_scaled`]'s body, inlined into each of its cases.
+/// [`put_scaled`]'s body, inlined into each of its cases: up to 8 decimals and 8 digits
+/// before the point (every word of a usual program) left to right, each part's digits at once
+/// ([`eight_digits`]), else digit pair by digit pair ([`put_by_pairs`]).
 #[inline(always)]
-fn push_decimals(buf: &mut Vec<u8>, units: i64, decimals: u32) {
+fn put_decimals(text: &mut [u8], at: usize, units: i64, decimals: u32) -> usize {
+    let mag = units.unsigned_abs();
+    let scale = POW10[decimals as usize] as u64;
+    let whole = mag / scale;
+    if decimals > 8 || whole >= 100_000_000 {
+        return put_by_pairs(text, at, units, decimals, whole);
+    }
+    let text = &mut text[at..at + MAX_SCALED_LEN];
+    let fraction = mag - whole * scale;
+    let digits = whole.checked_ilog10().map_or(1, |l| l as usize + 1);
+    let mut i = usize::from(units < 0);
+    text[0] = b'-';
+    // Eight digits with their leading zeros, the first in the lowest byte: shifted down by
+    // the zeros not written.
+    let w = eight_digits(whole as u32) >> (8 * (8 - digits));
+    text[i..i + 8].copy_from_slice(&w.to_le_bytes());
+    i += digits;
+    if decimals > 0 {
+        text[i] = b'.';
+        let f = eight_digits(fraction as u32) >> (8 * (8 - decimals));
+        text[i + 1..i + 9].copy_from_slice(&f.to_le_bytes());
+        i += 1 + decimals as usize;
+    }
+    at + i
+}
+
+/// The eight decimal digits of `n` < 10⁸ (leading zeros included) as ASCII bytes of a
+/// little-endian word, the first digit in the lowest byte, by arithmetic on its lanes ("SWAR"):
+/// `n` splits into two halves of four digits in 32-bit lanes, each into two pairs in 16-bit
+/// lanes (x/100 as ⌊x·10486/2²⁰⌋, exact below 43 699), each pair into two digits in bytes (x/10
+/// as ⌊x·103/2¹⁰⌋, exact below 179): a few multiplications, no chain of divisions a digit
+/// pair, no table.
+#[inline(always)]
+fn eight_digits(n: u32) -> u64 {
+    debug_assert!(n < 100_000_000);
+    let v = u64::from(n / 10_000) | (u64::from(n % 10_000) << 32);
+    let hundreds = ((v * 10_486) >> 20) & 0x0000_007f_0000_007f;
+    let v = hundreds | ((v - hundreds * 100) << 16);
+    let tens = ((v * 103) >> 10) & 0x000f_000f_000f_000f;
+    let v = tens | ((v - tens * 10) << 8);
+    v + 0x3030_3030_3030_3030
+}
+
+/// [`put_decimals`] for any decimals and magnitude, right to left digit pair by digit pair,
+/// its length counted first; `whole` is the magnitude's integer part.
+fn put_by_pairs(text: &mut [u8], at: usize, units: i64, decimals: u32, whole: u64) -> usize {
     let mut mag = units.unsigned_abs();
-    let whole = mag / POW10[decimals as usize] as u64;
     let digits = whole.checked_ilog10().map_or(1, |l| l as usize + 1);
     let len = usize::from(units < 0) + digits + usize::from(decimals > 0) + decimals as usize;
-    let start = buf.len();
-    buf.extend_from_slice(&[0; MAX_SCALED_LEN]);
-    let text = &mut buf[start..start + len];
+    let text = &mut text[at..at + len];
     let mut i = len;
     let mut fraction = decimals as usize;
     while fraction >= 2 {
@@ -104,7 +159,12 @@ fn push_decimals(buf: &mut Vec<u8>, units: i64, decimals: u32) {
         text[i] = b'-';
     }
     debug_assert_eq!(i, 0, "the length counted is the text's");
-    buf.truncate(start + len);
+    at + len
+}
+
+/// 10^`decimals` (at most [`MAX_DECIMALS`]).
+pub fn pow10(decimals: u32) -> i64 {
+    POW10[decimals as usize]
 }
 
 /// Writes the two digits of `n` (< 100) at `tmp[i..i + 2]`.
@@ -242,6 +302,30 @@ mod tests {
             buf.truncate(4);
             push_scaled(&mut buf, units, 9);
             assert_eq!(String::from_utf8(buf[4..].to_vec()).unwrap(), text);
+        }
+    }
+
+    #[test]
+    fn scaled_text_matches_std_on_random_magnitudes() {
+        // Both ways of writing (eight digits at once, digit pairs) against std's integer text
+        // with the point placed, on magnitudes spread over every digit count.
+        let mut x = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut buf = Vec::new();
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let units = (x as i64) >> (x % 64);
+            for decimals in 0..=MAX_DECIMALS {
+                let digits = units.unsigned_abs().to_string();
+                let digits = format!("{digits:0>width$}", width = decimals as usize + 1);
+                let (int, frac) = digits.split_at(digits.len() - decimals as usize);
+                let sign = if units < 0 { "-" } else { "" };
+                let point = if decimals > 0 { "." } else { "" };
+                buf.clear();
+                push_scaled(&mut buf, units, decimals);
+                assert_eq!(buf, format!("{sign}{int}{point}{frac}").as_bytes());
+            }
         }
     }
 

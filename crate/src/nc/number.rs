@@ -1,8 +1,8 @@
 //! Fixed-point decimal formatting for NC words, without allocation: the value is rounded once to
 //! an integer count of the last digit (`round(v·10^d)`, ties away from zero), then written left
-//! to right, its integer part and its decimals each as eight digits at once by arithmetic on
-//! the lanes of a 64-bit word (SWAR) where they fit, else digit pair by digit pair. Negative zero prints as zero, so `-0.000000` never appears; non-finite values and
-//! values beyond ±9·10¹⁸ units of the last digit are refused, so NaN never reaches a file.
+//! to right, integer part and decimals each eight digits at once (SWAR on a 64-bit word) where
+//! they fit, else digit pair by digit pair. Negative zero prints as zero, so `-0.000000` never
+//! appears; NaN, infinities and values beyond ±9·10¹⁸ units of the last digit are refused.
 
 pub use crate::job::output::MAX_DECIMALS;
 

@@ -71,7 +71,7 @@ pub fn push_scaled(buf: &mut Vec<u8>, units: i64, decimals: u32) {
 /// Writes `units · 10^−decimals` with exactly `decimals` digits after the point at
 /// `text[at..]`, which has room for [`MAX_SCALED_LEN`] bytes (bytes past the text may be
 /// overwritten); returns where the text ends.
-#[inline]
+#[inline(always)]
 pub fn put_scaled(text: &mut [u8], at: usize, units: i64, decimals: u32) -> usize {
     // The programs' usual decimals as constants: their divisions become multiplications.
     match decimals {
@@ -95,14 +95,20 @@ fn put_decimals(text: &mut [u8], at: usize, units: i64, decimals: u32) -> usize 
     }
     let text = &mut text[at..at + MAX_SCALED_LEN];
     let fraction = mag - whole * scale;
-    let digits = whole.checked_ilog10().map_or(1, |l| l as usize + 1);
     let mut i = usize::from(units < 0);
     text[0] = b'-';
-    // Eight digits with their leading zeros, the first in the lowest byte: shifted down by
-    // the zeros not written.
-    let w = eight_digits(whole as u32) >> (8 * (8 - digits));
-    text[i..i + 8].copy_from_slice(&w.to_le_bytes());
-    i += digits;
+    if whole < 10 {
+        // The usual X and Z of a part: one digit.
+        text[i] = b'0' + whole as u8;
+        i += 1;
+    } else {
+        // Eight digits with their leading zeros, the first in the lowest byte: shifted down
+        // by the zeros not written.
+        let digits = whole.ilog10() as usize + 1;
+        let w = eight_digits(whole as u32) >> (8 * (8 - digits));
+        text[i..i + 8].copy_from_slice(&w.to_le_bytes());
+        i += digits;
+    }
     if decimals > 0 {
         text[i] = b'.';
         let f = eight_digits(fraction as u32) >> (8 * (8 - decimals));

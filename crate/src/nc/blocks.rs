@@ -107,11 +107,11 @@ impl Blocks {
     /// first): written by index into a window of fixed room, cut to its length once.
     pub fn block(&mut self, p: &PathPoint, w: Words) -> Result<(), NcError> {
         let feed = self.feed_word(p)?;
-        let mut line = std::mem::take(&mut self.line);
+        let line = &mut self.line;
         line.clear();
         line.extend_from_slice(&[0; BLOCK_ROOM]);
         line[..PREFIX].copy_from_slice(&self.prefix);
-        let mut i = self.put_words(&mut line, self.prefix_len, w);
+        let mut i = put_words(&self.conv, self.style.words, line, self.prefix_len, w);
         if feed {
             // A copy of fixed size, cut to the text's: no library call a block.
             line[i..i + F_TEXT].copy_from_slice(&self.f_text);
@@ -119,7 +119,6 @@ impl Blocks {
         }
         line[i] = b'\n';
         line.truncate(i + 1);
-        self.line = line;
         self.last_theta = Some(p.theta);
         self.fits(p.index)
     }
@@ -164,79 +163,27 @@ impl Blocks {
 
     /// The X and C words of `w` in the dialect's order.
     pub fn push_xc(&mut self, w: Words) {
-        let mut line = std::mem::take(&mut self.line);
+        let line = &mut self.line;
         let start = line.len();
         line.extend_from_slice(&[0; WORDS_ROOM]);
         let mut i = start;
-        for axis in self.style.words {
-            if axis == Axis::Z {
-                continue;
-            }
+        for axis in self.style.words.into_iter().filter(|&a| a != Axis::Z) {
             if i > start {
                 line[i] = b' ';
                 i += 1;
             }
-            i = self.put_word(&mut line, i, axis, w);
+            i = put_word(&self.conv, line, i, axis, w);
         }
         line.truncate(i);
-        self.line = line;
-    }
-
-    /// Every word of `w` in the dialect's order, the servo's last.
-    pub fn push_words(&mut self, w: Words) {
-        let mut line = std::mem::take(&mut self.line);
-        let start = line.len();
-        line.extend_from_slice(&[0; WORDS_ROOM]);
-        let end = self.put_words(&mut line, start, w);
-        line.truncate(end);
-        self.line = line;
     }
 
     /// ` W…` when `w` is split.
     pub fn push_fts_word(&mut self, w: Words) {
-        let mut line = std::mem::take(&mut self.line);
+        let line = &mut self.line;
         let start = line.len();
         line.extend_from_slice(&[0; 2 + MAX_SCALED_LEN]);
-        let end = self.put_fts_word(&mut line, start, w);
+        let end = put_fts_word(&self.conv, line, start, w);
         line.truncate(end);
-        self.line = line;
-    }
-
-    /// [`Blocks::push_words`] at `text[at..]`, which has [`WORDS_ROOM`] bytes; returns where
-    /// the words end.
-    fn put_words(&self, text: &mut [u8], at: usize, w: Words) -> usize {
-        let mut i = at;
-        for (k, axis) in self.style.words.into_iter().enumerate() {
-            if k > 0 {
-                text[i] = b' ';
-                i += 1;
-            }
-            i = self.put_word(text, i, axis, w);
-        }
-        self.put_fts_word(text, i, w)
-    }
-
-    /// [`Blocks::push_fts_word`] at `text[at..]`; returns where it ends.
-    fn put_fts_word(&self, text: &mut [u8], at: usize, w: Words) -> usize {
-        match w.w {
-            Some(units) => {
-                text[at] = b' ';
-                text[at + 1] = self.conv.fts_word;
-                put_scaled(text, at + 2, units, self.conv.decimals_xz)
-            }
-            None => at,
-        }
-    }
-
-    /// The word of `axis` at `text[at..]`; returns where it ends.
-    fn put_word(&self, text: &mut [u8], at: usize, axis: Axis, w: Words) -> usize {
-        let (letter, units, d) = match axis {
-            Axis::C => (b'C', w.c, self.conv.decimals_c),
-            Axis::X => (b'X', w.x, self.conv.decimals_xz),
-            Axis::Z => (b'Z', w.z, self.conv.decimals_xz),
-        };
-        text[at] = letter;
-        put_scaled(text, at + 1, units, d)
     }
 
     /// `Z` and the height `z` mm (signed by the conventions).
@@ -270,6 +217,43 @@ impl Blocks {
     pub fn feed_mode(&self) -> FeedMode {
         self.feed_mode
     }
+}
+
+/// Every word of `w` in the order `axes`, the servo's last, at `text[at..]` (which has
+/// [`WORDS_ROOM`] bytes); returns where the words end.
+fn put_words(conv: &Conventions, axes: [Axis; 3], text: &mut [u8], at: usize, w: Words) -> usize {
+    let mut i = at;
+    for (k, axis) in axes.into_iter().enumerate() {
+        if k > 0 {
+            text[i] = b' ';
+            i += 1;
+        }
+        i = put_word(conv, text, i, axis, w);
+    }
+    put_fts_word(conv, text, i, w)
+}
+
+/// ` W…` at `text[at..]` when `w` is split; returns where it ends.
+fn put_fts_word(conv: &Conventions, text: &mut [u8], at: usize, w: Words) -> usize {
+    match w.w {
+        Some(units) => {
+            text[at] = b' ';
+            text[at + 1] = conv.fts_word;
+            put_scaled(text, at + 2, units, conv.decimals_xz)
+        }
+        None => at,
+    }
+}
+
+/// The word of `axis` at `text[at..]`; returns where it ends.
+fn put_word(conv: &Conventions, text: &mut [u8], at: usize, axis: Axis, w: Words) -> usize {
+    let (letter, units, d) = match axis {
+        Axis::C => (b'C', w.c, conv.decimals_c),
+        Axis::X => (b'X', w.x, conv.decimals_xz),
+        Axis::Z => (b'Z', w.z, conv.decimals_xz),
+    };
+    text[at] = letter;
+    put_scaled(text, at + 1, units, d)
 }
 
 /// `text` as comment lines `( … )` of at most `max` characters, broken between words (a word

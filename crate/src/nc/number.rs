@@ -83,8 +83,9 @@ pub fn put_scaled(text: &mut [u8], at: usize, units: i64, decimals: u32) -> usiz
 }
 
 /// [`put_scaled`]'s body, inlined into each of its cases: up to 8 decimals and 8 digits
-/// before the point (every word of a usual program) left to right, each part's digits at once
-/// ([`eight_digits`]), else digit pair by digit pair ([`put_by_pairs`]).
+/// before the point (every word of a usual program) left to right, a one-digit integer part as
+/// its byte, a longer one and the decimals each as eight digits at once ([`eight_digits`]);
+/// else digit pair by digit pair ([`put_by_pairs`]).
 #[inline(always)]
 fn put_decimals(text: &mut [u8], at: usize, units: i64, decimals: u32) -> usize {
     let mag = units.unsigned_abs();

@@ -36,5 +36,6 @@ pub mod plan;
 pub mod progress;
 pub mod raster;
 pub mod report;
+pub mod rounding;
 pub mod surface;
 pub mod tool;

@@ -24,7 +24,7 @@ use common::{
 use proptest::prelude::*;
 use spiralcam::job::{Job, ToolSpec};
 use spiralcam::plan::Planner;
-use spiralcam::surface::{Surface, SurfaceSpec};
+use spiralcam::surface::{Line, Local, SectionBounds, Surface, SurfaceSpec, UndefinedError};
 use spiralcam::tool::NoseCompensator;
 use std::f64::consts::TAU;
 
@@ -402,7 +402,9 @@ fn the_paper004_lens_array_path_touches_at_the_rims_to_the_picometre() {
     // compensation proves the nose height concave here and takes the shortcut
     // (`SectionBounds`). Every point touches within 0.1 nm and cuts nowhere (the dense check
     // with the rims as kinks, 6 000 steps: sampling bound < 0.01 nm), and where the contact
-    // sits on a rim it sits on it within 1e-9 mm. A dense check blind to the rims reports
+    // sits on a rim it sits on it within 1e-9 mm, the nose's centre as high as over the rim
+    // itself to 5e-15 mm (a bracket's ends, 1e-12 rad either side of the ridge, lie up to
+    // 1e-13 mm lower). A dense check blind to the rims reports
     // gaps of nanometres there: its steps straddle the ridge, not the nose.
     let job = r#"{"name":"paper004","part":{"diameter_mm":10},
         "surface":{"type":"lens_array","lens_radius_mm":2.84,"aperture_mm":1.0,"pitch_mm":1.0,
@@ -420,15 +422,17 @@ fn the_paper004_lens_array_path_touches_at_the_rims_to_the_picometre() {
         3601
     );
     let planner = common::planner_of(job);
-    let mut on_rim = 0;
+    let (surface, r) = (planner.path().surface(), 0.5);
+    let (mut on_rim, mut worst_height) = (0, 0.0f64);
     for p in common::path_points(&planner) {
         let (s, c) = p.theta.sin_cos();
         let contact = p.contact[0] * c + p.contact[1] * s;
-        let nearest = case
+        let rim = case
             .kinks(c, s)
             .into_iter()
-            .map(|k| (k - contact).abs())
-            .fold(f64::INFINITY, f64::min);
+            .min_by(|a, b| (a - contact).abs().total_cmp(&(b - contact).abs()))
+            .unwrap_or(f64::INFINITY);
+        let nearest = (rim - contact).abs();
         if nearest < 1e-6 {
             on_rim += 1;
             assert!(
@@ -436,9 +440,18 @@ fn the_paper004_lens_array_path_touches_at_the_rims_to_the_picometre() {
                 "point {}: contact {nearest:e} mm off the rim",
                 p.index
             );
+            // The maximum sits on the ridge: the nose centre is as high as the nose touching
+            // the rim itself puts it, f(rim) + r·cos a at the rim's nose angle.
+            let a = ((rim - p.rho) / r).asin();
+            let centre = surface.sag(rim * c, rim * s).unwrap() + r * a.cos();
+            worst_height = worst_height.max((p.z + r - centre).abs());
         }
     }
     assert!(on_rim > 100, "{on_rim} contacts on rims");
+    assert!(
+        worst_height < 5e-15,
+        "a contact on a rim {worst_height:e} mm from the height over the rim"
+    );
 }
 
 #[test]
@@ -662,4 +675,115 @@ fn the_cost_probes_are_points_of_the_walk() {
             );
         }
     }
+}
+
+/// A surface that counts its evaluations ([`Surface::local`]) and is otherwise `inner`.
+#[derive(Debug)]
+struct Counted<'a> {
+    inner: &'a dyn Surface,
+    evaluations: std::sync::atomic::AtomicUsize,
+}
+
+impl Counted<'_> {
+    fn count(&self) -> usize {
+        self.evaluations.load(std::sync::atomic::Ordering::Relaxed)
+    }
+}
+
+impl Surface for Counted<'_> {
+    fn local(&self, x: f64, y: f64) -> Result<Local, UndefinedError> {
+        self.evaluations
+            .fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        self.inner.local(x, y)
+    }
+    fn feature_length_mm(&self) -> f64 {
+        self.inner.feature_length_mm()
+    }
+    fn slope_kinks(&self, line: Line, t0: f64, t1: f64, out: &mut Vec<f64>) {
+        self.inner.slope_kinks(line, t0, t1, out)
+    }
+    fn kink_free_radius(&self, x: f64, y: f64) -> f64 {
+        self.inner.kink_free_radius(x, y)
+    }
+    fn section_bounds(&self, radius_mm: f64) -> Option<SectionBounds> {
+        self.inner.section_bounds(radius_mm)
+    }
+    fn describe(&self) -> String {
+        self.inner.describe()
+    }
+}
+
+#[test]
+fn a_contact_trail_starts_most_points_at_their_contact_where_the_section_turns() {
+    // Paper 004's array at the benchmarks' 5 680 points a turn: going round, the radial
+    // section turns through the lenslets and the contact angle swings with it, so the line
+    // through the last two contacts misses the next by about κ·Δθ² (10⁻⁶ rad), above the
+    // shortcut's 10⁻¹⁰ rad, and a Newton step follows at nearly every point. The cubic through
+    // the last four refined contacts (`ContactTrail`) misses by κ·Δθ⁴: most points are settled
+    // by their first evaluation. Both find every point's cold contact (height to 1e-14 mm).
+    use spiralcam::tool::{ContactTrail, WarmStart};
+    let job = r#"{"name":"trail","part":{"diameter_mm":10},
+        "surface":{"type":"lens_array","lens_radius_mm":2.84,"aperture_mm":1.0,"pitch_mm":1.0,
+                   "grid":"rectangular","form":"concave"},
+        "tool":{"nose_radius_mm":0.5,"included_angle_deg":100},"machine":{"spindle_rpm":800},
+        "strategy":{"feed_mm_per_rev":0.25,"sampling":{"type":"constant_angle","points_per_rev":5680}}}"#;
+    let planner = common::planner_of(job);
+    let (path, n) = (planner.path(), 5680);
+    let surface = Counted {
+        inner: path.surface(),
+        evaluations: Default::default(),
+    };
+    let (nose, concavity) = (path.nose(), path.nose().concavity(path.surface()));
+    assert!(concavity.is_some());
+    // Evaluations, and points settled by their first, from the trail and from the line.
+    let (mut trail_counts, mut line_counts, mut worst) = ([0; 2], [0; 2], 0.0f64);
+    let count = |counts: &mut [usize; 2], before: usize| {
+        let spent = surface.count() - before;
+        counts[0] += spent;
+        counts[1] += usize::from(spent == 1);
+    };
+    for rho in [1.37, 2.71, 4.03] {
+        let mut trail: Option<ContactTrail> = None;
+        let mut last_two: Vec<spiralcam::tool::Contact> = Vec::new();
+        for k in 0..n {
+            let (s, c) = (TAU * k as f64 / n as f64).sin_cos();
+            let before = surface.count();
+            let contact = nose
+                .compensate_from(&surface, concavity, rho, c, s, trail.map(|t| t.start))
+                .unwrap();
+            count(&mut trail_counts, before);
+            match &mut trail {
+                Some(t) => t.push(&contact),
+                None => trail = Some(ContactTrail::new(&contact)),
+            }
+            let line = match last_two.as_slice() {
+                [.., a2, a1] => Some(WarmStart::toward(
+                    a1.angle,
+                    a1.sin_cos,
+                    2.0 * a1.angle - a2.angle,
+                )),
+                [a1] => Some(WarmStart::toward(a1.angle, a1.sin_cos, a1.angle)),
+                [] => None,
+            };
+            let before = surface.count();
+            let by_the_line = nose
+                .compensate_from(&surface, concavity, rho, c, s, line)
+                .unwrap();
+            count(&mut line_counts, before);
+            last_two.push(by_the_line);
+            let cold = nose.compensate(path.surface(), rho, c, s).unwrap();
+            worst = worst
+                .max((contact.z_tip - cold.z_tip).abs())
+                .max((by_the_line.z_tip - cold.z_tip).abs());
+        }
+    }
+    assert!(worst <= 1e-14, "height {worst:e} mm from the cold start");
+    let points = (3 * n) as f64;
+    let [trail, trail_first] = trail_counts.map(|c| c as f64 / points);
+    let [line, line_first] = line_counts.map(|c| c as f64 / points);
+    assert!(
+        trail_first > 0.6 && line_first < 0.25 && trail < 0.85 * line,
+        "evaluations a point {trail} and {line}, settled by the first {trail_first} and \
+         {line_first} of the points, from the trail and from the line"
+    );
 }

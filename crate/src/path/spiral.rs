@@ -25,6 +25,7 @@
 
 use crate::field::{FieldError, feed_within, in_range, length, positive};
 use crate::job::{Direction, Sampling};
+use crate::rounding;
 use std::f64::consts::TAU;
 use std::sync::Arc;
 
@@ -520,9 +521,10 @@ impl Spiral {
     fn step_in_turn(&self, theta: f64) -> Option<(usize, usize)> {
         let points_per_rev = self.turn_points()?;
         let n = points_per_rev as f64;
-        // k is a whole number far below 2⁵³ (at most MAX_POINTS steps): its remainder in
-        // integers is the float remainder's, without a software fmod.
-        let k = (self.sign * (theta - self.theta0) * n / TAU).round() as i64;
+        // k is a whole number far below 2⁵³ (at most MAX_POINTS steps), θ within rounding of
+        // its angle: rounded without a library call, its remainder in integers is the float
+        // remainder's, without a software fmod.
+        let k = rounding::nearest(self.sign * (theta - self.theta0) * (n / TAU)) as i64;
         let step = k.rem_euclid(i64::from(points_per_rev));
         Some((step as usize, points_per_rev as usize))
     }

@@ -11,6 +11,7 @@
 
 use super::{Line, Local, PartDisc, SectionBounds, Surface, UndefinedError};
 use crate::field::{FieldError, length};
+use crate::rounding::nearest;
 use serde::{Deserialize, Serialize};
 
 /// The most lenslets on a part.
@@ -209,21 +210,6 @@ impl LensArray {
         self.centres_in([x - r, x + r, y - r, y + r], |_, _| count += 1);
         count
     }
-}
-
-/// The integer nearest to `x` (halves upwards) for |x| < 2⁵²: `floor(x + 0.5)`, since
-/// `f64::round` is a library call on baseline x86-64 and this lookup runs per evaluation. Below
-/// 2⁵¹ the sum with 1.5·2⁵² rounds y to an integer in the floating-point unit (its ulp is 1
-/// there, the subtraction exact), faster than a saturating conversion to i64 and back.
-fn nearest(x: f64) -> f64 {
-    const ROUNDER: f64 = 6_755_399_441_055_744.0; // 1.5·2⁵²
-    let y = x + 0.5;
-    let t = if y.abs() < ROUNDER / 3.0 {
-        (y + ROUNDER) - ROUNDER
-    } else {
-        y as i64 as f64
-    };
-    if t > y { t - 1.0 } else { t }
 }
 
 /// `nearest(x / d − shift)`, by a multiplication with `per_d` = 1/d where that rounds to the

@@ -19,7 +19,7 @@ pub mod tool_path;
 pub mod two_way;
 pub mod waviness;
 
-pub use one_way::{Concavity, Contact, NoseCompensator, WarmStart};
+pub use one_way::{Concavity, Contact, ContactTrail, NoseCompensator, WarmStart};
 pub use tool_path::{Batched, Probe, ToolPath, Walked, spiral};
 pub use two_way::{TwoWay, max_principal_curvature};
 pub use waviness::Waviness;

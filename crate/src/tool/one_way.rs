@@ -43,14 +43,21 @@
 //!
 //! **Warm start.** Along a path the certificate does not depend on where Newton starts: with
 //! one maximum on the arc, any start converges to it (kinks probed as before). A path therefore
-//! starts each point's iteration from the line through its two predecessors' contact angles,
-//! `2·a₁ − a₂` ([`WarmStart`], [`NoseCompensator::compensate_from`];
-//! [`super::tool_path::WARM_RUN`] says how a path keeps that independent of its batches), its
-//! sine and cosine by rotation from the last contact's (no library call). On a smooth section
-//! the extrapolation's error is second order in the step, so the first sample is usually
-//! already within the 10⁻¹⁰ rad tolerance: about 1.07 evaluations a point on the asphere of the
-//! benchmarks (2.03 from the predecessor's angle alone, 4–5 cold), about 1.9 on the paper 004
-//! lens array (2.35 from the predecessor's angle). The slope kinks are listed only when a
+//! starts each point's iteration from its predecessors' contacts ([`ContactTrail`],
+//! [`NoseCompensator::compensate_from`]; [`super::tool_path::WARM_RUN`] says how a path keeps
+//! that independent of its batches): the cubic through the last four contact angles, each
+//! refined by the Newton step its last sample gives ([`Contact::refined_angle`]), or the line
+//! through the last two where the cubic strays from it (the contact jumped), its sine and
+//! cosine by rotation from the last contact's (no library call). On a smooth section the
+//! cubic's error is fourth order in the step, so the first sample is usually already within
+//! the 10⁻¹⁰ rad tolerance: about 1.07 evaluations a point on the asphere of the benchmarks
+//! (the line does as well there: its contact angle barely changes along a turn; 2.03 from the
+//! predecessor's angle alone, 4–5 cold), about 1.5 on the paper 004 lens array at 5 680 points
+//! a turn (2.0 from the line, whose error, κ·Δθ² as the section turns with the lenslets, is
+//! above the tolerance; most of the rest are contacts on rims). A contact on a rim predicted
+//! within 10⁻⁹ rad serves as the kink's near side, its far side is sampled next and the
+//! bracket's end tangents meet over the kink (`Section::refine_from`): three evaluations,
+//! the height the rim's own to rounding. The slope kinks are listed only when a
 //! Newton step is taken, and only those between the step's start and its target (those of the
 //! stretch asked for before serve while the next step lands inside it), and not at all where the
 //! surface shows none within the step's reach ([`Surface::kink_free_radius`]: a lenslet's rim
@@ -101,12 +108,15 @@ pub struct Contact {
     pub at_arc_end: bool,
     /// sin a and cos a of the contact's nose angle (a warm start's rotation starts from them).
     pub sin_cos: (f64, f64),
+    /// The contact angle one Newton step on from `angle` (within 10⁻⁸ rad of it), or `angle`:
+    /// what a path's warm start extrapolates from ([`ContactTrail`]).
+    pub refined_angle: f64,
 }
 
 /// Where the contact search of a point starts ([`NoseCompensator::compensate_from`]): an angle,
 /// and a nearby contact angle whose sine and cosine are known, from which the start's are found
-/// by rotation. Along a path, the contact angles of the last two points extrapolated linearly
-/// ([`WarmStart::after`]); between two points, an angle between their contacts
+/// by rotation. Along a path, extrapolated from the contacts of the points before
+/// ([`ContactTrail`]); between two points, an angle between their contacts
 /// ([`WarmStart::toward`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WarmStart {
@@ -116,18 +126,6 @@ pub struct WarmStart {
 }
 
 impl WarmStart {
-    /// The warm start after `contact`, the contact of the point after the one `previous` was
-    /// made from (`None`: the walk starts there): `2·a₁ − a₂` from the last two contacts, or
-    /// the last alone.
-    pub fn after(previous: Option<WarmStart>, contact: &Contact) -> Self {
-        let last = contact.angle;
-        Self {
-            last,
-            sin_cos: contact.sin_cos,
-            angle: previous.map_or(last, |w| 2.0 * last - w.last),
-        }
-    }
-
     /// A start at `angle`, near the contact angle `from` whose sine and cosine are `sin_cos`.
     pub fn toward(from: f64, sin_cos: (f64, f64), angle: f64) -> Self {
         Self {
@@ -143,6 +141,53 @@ impl WarmStart {
     }
 }
 
+/// The contacts of a path's last points and the warm start they give the next. The start
+/// extrapolates their refined angles ([`Contact::refined_angle`]): from the last four by the
+/// cubic through them, `4·(a₁ + a₃) − 6·a₂ − a₄`, where it lies within 10⁻⁵ rad of the line
+/// through the last two, `2·a₁ − a₂` (else that line: the contact jumped, a rim passed under
+/// the nose), from fewer by that line or the last alone. The cubic's error is fourth order in
+/// the step: on a section that turns as the path goes round (a lenslet), the line misses by
+/// about `κ·Δθ²` (2·10⁻⁶ rad on the paper 004 array at 5 680 points a turn), more than the
+/// shortcut's tolerance, so each point took a Newton step; the cubic misses by `κ·Δθ⁴`
+/// (3·10⁻¹² rad), and the first sample is usually the answer.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactTrail {
+    /// The next point's start.
+    pub start: WarmStart,
+    /// The refined contact angles of the last three points, the latest first.
+    history: [f64; 3],
+    /// How many points the trail follows (saturated).
+    known: u8,
+}
+
+impl ContactTrail {
+    /// The trail of a walk that starts at `contact`: the next start is its angle.
+    pub fn new(contact: &Contact) -> Self {
+        let h0 = contact.refined_angle;
+        Self {
+            start: WarmStart::toward(contact.angle, contact.sin_cos, h0),
+            history: [h0; 3],
+            known: 1,
+        }
+    }
+
+    /// Follows the trail on to `contact`, the contact of the next point.
+    pub fn push(&mut self, contact: &Contact) {
+        let h0 = contact.refined_angle;
+        let [h1, h2, h3] = self.history;
+        self.history = [h0, h1, h2];
+        self.known = (self.known + 1).min(4);
+        let linear = 2.0 * h0 - h1;
+        let cubic = 4.0 * (h0 + h2) - 6.0 * h1 - h3;
+        let angle = if self.known >= 4 && (cubic - linear).abs() < 1e-5 {
+            cubic
+        } else {
+            linear
+        };
+        self.start = WarmStart::toward(contact.angle, contact.sin_cos, angle);
+    }
+}
+
 /// One-way compensation for a given tool and part.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NoseCompensator {
@@ -150,6 +195,9 @@ pub struct NoseCompensator {
     half_angle: f64,
     samples: usize,
     limit_radius: f64,
+    /// How far the arc reaches either side of its centre, `r·sin(β/2)`, widened by 10⁻⁹ of
+    /// itself: a part edge at least this far leaves the whole arc.
+    reach: f64,
     /// (a, sin a, cos a) of the sample grid over the whole arc, the usual case away from the
     /// part edge: tabulated once rather than per point.
     grid: Vec<[f64; 3]>,
@@ -208,6 +256,7 @@ impl NoseCompensator {
             half_angle,
             samples,
             limit_radius: limit_radius_mm,
+            reach: r * half_angle.sin() * (1.0 + 1e-9),
             grid,
             waviness,
         })
@@ -263,8 +312,9 @@ impl NoseCompensator {
         let r = self.r;
         let clamp_asin = |s: f64| s.clamp(-1.0, 1.0).asin();
         let (to_rim, to_far_rim) = (self.limit_radius - rho_s, -self.limit_radius - rho_s);
-        if self.waviness.is_none() && to_rim >= r && to_far_rim <= -r {
-            // The part reaches beyond the whole circle: the included angle alone limits.
+        if self.waviness.is_none() && to_rim >= self.reach && to_far_rim <= -self.reach {
+            // The part reaches beyond the whole arc: the included angle alone limits (the
+            // arcsines below would be at least ±β/2).
             return (-self.half_angle, self.half_angle);
         }
         let (hi, lo) = match &self.waviness {
@@ -375,6 +425,7 @@ impl NoseCompensator {
             z,
             at_arc_end: false,
             sin_cos: (0.0, 1.0),
+            refined_angle: 0.0,
         }
     }
 
@@ -426,6 +477,7 @@ impl NoseCompensator {
             z: local.z,
             at_arc_end: at_arc_end && best.g.abs() > 1e-12 * r,
             sin_cos: (best.sa, best.ca),
+            refined_angle: refined(&best),
         };
         Ok((contact, local))
     }
@@ -769,6 +821,25 @@ impl Scan {
     }
 }
 
+/// Where the tangents of F at `lo` and `hi` meet (angle, height), for `lo.g > hi.g`.
+fn tangents_meet(lo: &Sample, hi: &Sample) -> (f64, f64) {
+    let a = lo.a + (hi.f - lo.f - hi.g * (hi.a - lo.a)) / (lo.g - hi.g);
+    (a, lo.f + lo.g * (a - lo.a))
+}
+
+/// `x`'s angle one Newton step on (F′ = 0 of F's quadratic model there) where that step is
+/// within 10⁻⁸ rad, else its own: at a smooth maximum the step is second order in `x`'s
+/// distance from it, so a warm start extrapolated from refined angles is as good as the
+/// points' exact maxima would give, whichever sample certified them.
+fn refined(x: &Sample) -> f64 {
+    let step = -x.g / x.gg;
+    if x.gg < 0.0 && step.abs() <= 1e-8 {
+        x.a + step
+    } else {
+        x.a
+    }
+}
+
 /// The `i`-th of `n + 1` equally spaced angles from `lo` to `hi` (the last exactly `hi`).
 fn grid_angle(lo: f64, hi: f64, n: usize, i: usize) -> f64 {
     if i == n {
@@ -976,11 +1047,17 @@ impl Section<'_> {
                 Some((_, _, near)) => near,
                 None => &asked.insert((from, to, kinks(from, to, x.sa))).2,
             };
-            let kink = if up {
-                near.iter().copied().find(|&k| k > x.a)
-            } else {
-                near.iter().rev().copied().find(|&k| k < x.a)
+            // The first kink side beyond x; where x already lies beside it (a contact on a
+            // rim, predicted to within 10⁻⁹ rad), x serves as that side and the kink's far
+            // side is next.
+            let beyond = |from: f64| match up {
+                true => near.iter().copied().find(|&k| k > from),
+                false => near.iter().rev().copied().find(|&k| k < from),
             };
+            let kink = beyond(x.a).map(|k| match beyond(k) {
+                Some(far) if (k - x.a).abs() < 1e-9 && (far - k).abs() <= 3.0 * KINK_OFFSET => far,
+                _ => k,
+            });
             let stop = kink.unwrap_or(end);
             let a = if (up && target < stop) || (!up && target > stop) {
                 target
@@ -1049,8 +1126,9 @@ impl Section<'_> {
     }
 
     /// The local maximum of F in `[lo.a, hi.a]` given `F′(lo) ≥ 0 ≥ F′(hi)`, not both zero:
-    /// Newton on F′ = 0 inside the bracket, bisection where Newton would leave it or the
-    /// section has a kink.
+    /// Newton on F′ = 0 inside the bracket, bisection where Newton would leave it; across a
+    /// slope kink (F′ drops by more than 10⁶ times the bracket's width) where the tangents at
+    /// its ends meet, until they bound every point of it within 10⁻¹⁵ mm of the best sample.
     fn refine(&self, lo: Sample, hi: Sample) -> Result<Sample, UndefinedError> {
         self.refine_from(lo, hi, lo)
     }
@@ -1065,20 +1143,33 @@ impl Section<'_> {
         let mut best = if lo.f > hi.f { lo } else { hi };
         for _ in 0..100 {
             let width = hi.a - lo.a;
-            // Done when the bracket is at rounding level, or no point in it can exceed its
-            // ends by more than 1e-13 mm (F′ lies between its end values near a maximum).
-            if width < 1e-14 || width * lo.g.abs().max(hi.g.abs()) < 1e-13 {
-                break;
-            }
-            let newton = if x.gg < 0.0 {
-                x.a - x.g / x.gg
+            let a = if lo.g - hi.g > 1e6 * width {
+                // A slope kink inside (a ridge: F′ drops far more than a smooth F′ could over
+                // the width): F is concave across it, so below both end tangents, which meet
+                // over the kink (each side straight to rounding over such a width). Done when
+                // no point can top the best sample by 10⁻¹⁵ mm, else sampled where they meet.
+                let (a, top) = tangents_meet(&lo, &hi);
+                if top - best.f <= 1e-15 || !(a > lo.a && a < hi.a) {
+                    break;
+                }
+                a
             } else {
-                f64::NAN
-            };
-            let a = if newton > lo.a && newton < hi.a && (newton - x.a).abs() < 0.5 * width {
-                newton
-            } else {
-                0.5 * (lo.a + hi.a)
+                // Done when the bracket is at rounding level, or no point in it can exceed
+                // its ends by more than 1e-13 mm (F′ lies between its end values near a
+                // maximum).
+                if width < 1e-14 || width * lo.g.abs().max(hi.g.abs()) < 1e-13 {
+                    break;
+                }
+                let newton = if x.gg < 0.0 {
+                    x.a - x.g / x.gg
+                } else {
+                    f64::NAN
+                };
+                if newton > lo.a && newton < hi.a && (newton - x.a).abs() < 0.5 * width {
+                    newton
+                } else {
+                    0.5 * (lo.a + hi.a)
+                }
             };
             x = self.at_near(&x, a)?;
             if x.f > best.f {
@@ -1114,6 +1205,34 @@ mod tests {
             included_angle_deg: 100.0,
             ..ToolSpec::with_nose_radius(0.0)
         }
+    }
+
+    #[test]
+    fn a_trail_extrapolates_the_cubic_through_four_contacts_and_the_line_after_a_jump() {
+        let contact = |a: f64| Contact {
+            z_center: 0.0,
+            z_tip: 0.0,
+            angle: a,
+            rho: 0.0,
+            z: 0.0,
+            at_arc_end: false,
+            sin_cos: a.sin_cos(),
+            refined_angle: a,
+        };
+        let cubic = |k: f64| 0.01 + 1e-3 * k - 2e-6 * k * k + 3e-8 * k * k * k;
+        let mut trail = ContactTrail::new(&contact(cubic(0.0)));
+        assert_eq!(trail.start.angle(), cubic(0.0));
+        for k in 1..10 {
+            trail.push(&contact(cubic(k as f64)));
+            let line = 2.0 * cubic(k as f64) - cubic(k as f64 - 1.0);
+            let expected = if k >= 3 { cubic(k as f64 + 1.0) } else { line };
+            assert!((trail.start.angle() - expected).abs() < 1e-15, "{k}");
+            // It rotates from the last contact.
+            assert_eq!(trail.start.last, cubic(k as f64));
+        }
+        // The contact jumps to another side of the arc: the line through the last two.
+        trail.push(&contact(-0.3));
+        assert_eq!(trail.start.angle(), 2.0 * -0.3 - cubic(9.0));
     }
 
     #[test]

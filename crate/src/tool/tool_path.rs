@@ -12,7 +12,7 @@
 //! aligned on the index (the warm start of [`crate::tool::one_way`]), so a point is the same
 //! bits however the path is computed.
 
-use super::one_way::WarmStart;
+use super::one_way::ContactTrail;
 use super::reach::{self, Reach};
 use super::{Concavity, NoseCompensator};
 use crate::field::FieldError;
@@ -71,7 +71,7 @@ fn line_batch(total: u64) -> u64 {
 
 /// The path is compensated in runs of this many points, aligned on the index: the first point
 /// of a run starts its contact search cold, every other one from its predecessors' contacts
-/// ([`NoseCompensator::compensate_from`], [`WarmStart`]). A point's result thus depends on its
+/// ([`NoseCompensator::compensate_from`], [`ContactTrail`]). A point's result thus depends on its
 /// index alone, however the path is cut into batches, slices or threads, as long as each piece
 /// starts on a run boundary or recomputes the run it starts in. A divisor of the batch size.
 pub const WARM_RUN: u64 = 64;
@@ -308,14 +308,14 @@ impl ToolPath {
         Ok(())
     }
 
-    /// [`Self::path_point`] in a walk along the path: `warm` holds the start the contacts of
-    /// the points before give ([`WarmStart`]), dropped at the start of each [`WARM_RUN`], and
-    /// takes this one's.
+    /// [`Self::path_point`] in a walk along the path: `warm` holds the contacts of the points
+    /// before and the start they give ([`ContactTrail`]), dropped at the start of each
+    /// [`WARM_RUN`], and takes this one's.
     fn warm_point(
         &self,
         index: u64,
         sp: SpiralPoint,
-        warm: &mut Option<WarmStart>,
+        warm: &mut Option<ContactTrail>,
     ) -> Result<(PathPoint, bool), UndefinedError> {
         if index.is_multiple_of(WARM_RUN) {
             *warm = None;
@@ -333,7 +333,7 @@ impl ToolPath {
         &self,
         index: u64,
         sp: SpiralPoint,
-        warm: &mut Option<WarmStart>,
+        warm: &mut Option<ContactTrail>,
     ) -> Result<(PathPoint, bool), UndefinedError> {
         if self.job.strategy.compensation == Compensation::TwoWay {
             // The angle's own sine: the C offset of a centre across the axis (±π) follows its
@@ -364,9 +364,12 @@ impl ToolPath {
             sp.rho,
             c,
             s,
-            *warm,
+            warm.map(|t| t.start),
         )?;
-        *warm = Some(WarmStart::after(*warm, &contact));
+        match warm {
+            Some(trail) => trail.push(&contact),
+            None => *warm = Some(ContactTrail::new(&contact)),
+        }
         Ok((
             PathPoint {
                 index,

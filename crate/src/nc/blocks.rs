@@ -234,6 +234,7 @@ fn put_words(conv: &Conventions, axes: [Axis; 3], text: &mut [u8], at: usize, w:
 }
 
 /// ` W…` at `text[at..]` when `w` is split; returns where it ends.
+#[inline(always)]
 fn put_fts_word(conv: &Conventions, text: &mut [u8], at: usize, w: Words) -> usize {
     match w.w {
         Some(units) => {
@@ -246,6 +247,7 @@ fn put_fts_word(conv: &Conventions, text: &mut [u8], at: usize, w: Words) -> usi
 }
 
 /// The word of `axis` at `text[at..]`; returns where it ends.
+#[inline(always)]
 fn put_word(conv: &Conventions, text: &mut [u8], at: usize, axis: Axis, w: Words) -> usize {
     let (letter, units, d) = match axis {
         Axis::C => (b'C', w.c, conv.decimals_c),

@@ -396,6 +396,19 @@ fn every_point_of_a_planned_lens_array_path_touches_without_cutting() {
     check_path(&job, &case);
 }
 
+/// Paper 004's lens array (concave, R 2.84 mm, a = p = 1 mm, Ø10 mm) with its r 0.5 mm, 100°
+/// nose, on a constant-angle spiral of `points_per_rev` at 0.25 mm a turn.
+fn paper004_job(points_per_rev: u32) -> String {
+    format!(
+        r#"{{"name":"paper004","part":{{"diameter_mm":10}},
+        "surface":{{"type":"lens_array","lens_radius_mm":2.84,"aperture_mm":1.0,"pitch_mm":1.0,
+                   "grid":"rectangular","form":"concave"}},
+        "tool":{{"nose_radius_mm":0.5,"included_angle_deg":100}},"machine":{{"spindle_rpm":800}},
+        "strategy":{{"feed_mm_per_rev":0.25,
+                     "sampling":{{"type":"constant_angle","points_per_rev":{points_per_rev}}}}}}}"#
+    )
+}
+
 #[test]
 fn the_paper004_lens_array_path_touches_at_the_rims_to_the_picometre() {
     // Paper 004's array (concave, R 2.84 mm, a = p = 1 mm, Ø10 mm) with its r 0.5 mm nose: the
@@ -406,11 +419,7 @@ fn the_paper004_lens_array_path_touches_at_the_rims_to_the_picometre() {
     // itself to 5e-15 mm (a bracket's ends, 1e-12 rad either side of the ridge, lie up to
     // 1e-13 mm lower). A dense check blind to the rims reports
     // gaps of nanometres there: its steps straddle the ridge, not the nose.
-    let job = r#"{"name":"paper004","part":{"diameter_mm":10},
-        "surface":{"type":"lens_array","lens_radius_mm":2.84,"aperture_mm":1.0,"pitch_mm":1.0,
-                   "grid":"rectangular","form":"concave"},
-        "tool":{"nose_radius_mm":0.5,"included_angle_deg":100},"machine":{"spindle_rpm":800},
-        "strategy":{"feed_mm_per_rev":0.25,"sampling":{"type":"constant_angle","points_per_rev":180}}}"#;
+    let job = &paper004_job(180);
     let case = Case {
         json: String::new(),
         part_radius: 5.0,
@@ -722,12 +731,7 @@ fn a_contact_trail_starts_most_points_at_their_contact_where_the_section_turns()
     // the last four refined contacts (`ContactTrail`) misses by κ·Δθ⁴: most points are settled
     // by their first evaluation. Both find every point's cold contact (height to 1e-14 mm).
     use spiralcam::tool::{ContactTrail, WarmStart};
-    let job = r#"{"name":"trail","part":{"diameter_mm":10},
-        "surface":{"type":"lens_array","lens_radius_mm":2.84,"aperture_mm":1.0,"pitch_mm":1.0,
-                   "grid":"rectangular","form":"concave"},
-        "tool":{"nose_radius_mm":0.5,"included_angle_deg":100},"machine":{"spindle_rpm":800},
-        "strategy":{"feed_mm_per_rev":0.25,"sampling":{"type":"constant_angle","points_per_rev":5680}}}"#;
-    let planner = common::planner_of(job);
+    let planner = common::planner_of(&paper004_job(5680));
     let (path, n) = (planner.path(), 5680);
     let surface = Counted {
         inner: path.surface(),

@@ -147,9 +147,9 @@ impl WarmStart {
 /// through the last two, `2·a₁ − a₂` (else that line: the contact jumped, a rim passed under
 /// the nose), from fewer by that line or the last alone. The cubic's error is fourth order in
 /// the step: on a section that turns as the path goes round (a lenslet), the line misses by
-/// about `κ·Δθ²` (2·10⁻⁶ rad on the paper 004 array at 5 680 points a turn), more than the
-/// shortcut's tolerance, so each point took a Newton step; the cubic misses by `κ·Δθ⁴`
-/// (3·10⁻¹² rad), and the first sample is usually the answer.
+/// about `κ·Δθ²` (some 10⁻⁶ rad on the paper 004 array at 5 680 points a turn), more than the
+/// shortcut's tolerance, so each point took a Newton step; the cubic misses by about 5·10⁻¹¹
+/// rad there (the refined angle's step), and the first sample is usually the answer.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactTrail {
     /// The next point's start.

@@ -14,7 +14,7 @@
 //! | [`path`] | the path's points and places; the spiral samplers (constant angle/arc, HCAA, space spiral) |
 //! | [`job`] | the job document: spec types, defaults, validation |
 //! | [`surface`] | every surface family with sag, gradient and Hessian; the data files they read |
-//! | [`field`], [`progress`], [`parallel`], [`raster`] | helpers: field errors, progress, threads, maps |
+//! | [`field`], [`progress`], [`parallel`], [`raster`], [`rounding`] | helpers: field errors, progress, threads, maps, rounding without libm |
 //!
 //! A job's way through them: JSON → [`job::Job`] → [`surface::Surface`] → the spiral
 //! ([`path::spiral`], [`path::hcaa`], [`path::space_spiral`]) → the nose compensation

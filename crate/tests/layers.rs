@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 /// The layers, lowest first. Modules of one layer do not use each other.
 const LAYERS: &[&[&str]] = &[
-    &["field", "progress", "parallel", "raster"],
+    &["field", "progress", "parallel", "raster", "rounding"],
     &["surface"],
     &["job"],
     &["path"],

@@ -9,11 +9,14 @@ the difference between the two runs divided by the difference in points (the job
 same in both, drops out), then the functions that execute the most instructions a point in the larger
 run (their own instructions, not those of the functions they call).
 
-    python3 tests/bench/instructions.py [BINARY [OTHER]] [--points N] [--top K]
+    python3 tests/bench/instructions.py [BINARY [OTHER]] [--points N] [--per-rev P] [--top K]
 
 BINARY defaults to target/release/spiralcam (`cargo build --release -p spiralcam`); with OTHER
-both are counted, row by row. N is the points of the whole part (default 400 001), K the number of functions listed (default 12). Installs valgrind with apt where it is
-missing. Each run takes about 50 times the planner's own time.
+both are counted, row by row. P is the points a turn (default 5 680, the 28.4 M-point jobs':
+the compensation's warm start depends on the angle between points, so a coarser turn counts
+other work), N about the points of the whole part (default 568 001: 100 turns; rounded to a
+multiple of four turns), K the number of functions listed (default 12). Installs valgrind with
+apt where it is missing. Each run takes about 50 times the planner's own time.
 """
 
 import json
@@ -55,22 +58,28 @@ def count(binary, job_path, tmp):
 
 def main():
     args = sys.argv[1:]
-    points, top, binaries = 400_001, 12, []
+    points, per_rev, top, binaries = 568_001, 5_680, 12, []
     while args:
         flag = args.pop(0)
         if flag == "--points":
             points = int(args.pop(0))
+        elif flag == "--per-rev":
+            per_rev = int(args.pop(0))
         elif flag == "--top":
             top = int(args.pop(0))
         else:
             binaries.append(flag)
     binaries = binaries or [os.path.join(ROOT, "target", "release", "spiralcam")]
+    # Whole turns, a multiple of four, so that the run at four times the feed has a quarter.
+    turns = max(4, round((points - 1) / per_rev / 4) * 4)
+    points = turns * per_rev + 1
     ensure_valgrind()
     with tempfile.TemporaryDirectory() as tmp:
         for kind in ["asphere", "lens_array"]:
             whole = job(kind, points)
-            turns = round(5.0 / whole["strategy"]["feed_mm_per_rev"])
-            small = (points - 1) // turns * (turns // 4) + 1
+            whole["strategy"]["feed_mm_per_rev"] = 5.0 / turns
+            whole["strategy"]["sampling"]["points_per_rev"] = per_rev
+            small = per_rev * (turns // 4) + 1
             paths = {}
             for n, feed in [(points, 1.0), (small, 4.0)]:
                 j = json.loads(json.dumps(whole))

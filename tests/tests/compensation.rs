@@ -774,6 +774,9 @@ fn a_contact_trail_starts_most_points_at_their_contact_where_the_section_turns()
                 .compensate_from(&surface, concavity, rho, c, s, line)
                 .unwrap();
             count(&mut line_counts, before);
+            if last_two.len() == 2 {
+                last_two.remove(0);
+            }
             last_two.push(by_the_line);
             let cold = nose.compensate(path.surface(), rho, c, s).unwrap();
             worst = worst
